@@ -1,0 +1,3 @@
+//! Post-processing of results (summaries, plots).
+
+pub mod plot;

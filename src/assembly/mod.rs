@@ -1,0 +1,197 @@
+//! Global assembly: DOF numbering (prescribed DOFs eliminated), element and contact
+//! contributions scattered into the full residual and the free-DOF sparse tangent.
+
+pub mod sparse;
+
+use crate::contact::system::{Config, ContactSystem};
+use crate::element::quad::{quad_residual_tangent, ElementError};
+use crate::model::Model;
+use sparse::SparseMatrix;
+
+const NONE: u32 = u32::MAX;
+
+/// Map from global DOFs (`2 node + component`) to free equations.
+#[derive(Debug, Clone)]
+pub struct DofMap {
+    /// Equation of each DOF, or `None` when prescribed.
+    pub eq: Vec<Option<usize>>,
+    pub n_free: usize,
+    /// Prescribed DOFs in the order of [`Model::prescribed`].
+    pub prescribed: Vec<usize>,
+}
+
+impl DofMap {
+    pub fn new(model: &Model) -> Self {
+        let n = model.dof_count();
+        let mut fixed = vec![false; n];
+        for p in &model.prescribed {
+            fixed[p.dof] = true;
+        }
+        let mut eq = vec![None; n];
+        let mut k = 0;
+        for d in 0..n {
+            if !fixed[d] {
+                eq[d] = Some(k);
+                k += 1;
+            }
+        }
+        DofMap {
+            eq,
+            n_free: k,
+            prescribed: model.prescribed.iter().map(|p| p.dof).collect(),
+        }
+    }
+}
+
+/// An element could not be evaluated.
+#[derive(Debug, Clone, thiserror::Error)]
+#[error("element {element}: {source}")]
+pub struct AssemblyError {
+    pub element: usize,
+    #[source]
+    pub source: ElementError,
+}
+
+/// Owns the sparse tangent and the scatter maps.
+pub struct Assembler {
+    pub dofs: DofMap,
+    pub matrix: SparseMatrix,
+    /// Value index of each element-matrix entry (row-major 8×8), `NONE` where prescribed.
+    elem_slots: Vec<[u32; 64]>,
+    /// Full residual `f_int + f_contact − f_ext` over all DOFs (reactions at prescribed DOFs).
+    pub r_full: Vec<f64>,
+    /// Stored energy of the elements at the last assembly.
+    pub energy: f64,
+    missing: Vec<(usize, usize)>,
+}
+
+fn element_eqs(dofs: &DofMap, nodes: &[usize; 4]) -> [Option<usize>; 8] {
+    let mut e = [None; 8];
+    for (i, &n) in nodes.iter().enumerate() {
+        e[2 * i] = dofs.eq[2 * n];
+        e[2 * i + 1] = dofs.eq[2 * n + 1];
+    }
+    e
+}
+
+impl Assembler {
+    pub fn new(model: &Model) -> Self {
+        let dofs = DofMap::new(model);
+        let mut groups = model
+            .elements
+            .iter()
+            .map(|el| element_eqs(&dofs, &el.nodes).iter().flatten().copied().collect());
+        let matrix = SparseMatrix::new(dofs.n_free, &mut groups);
+        let mut a = Assembler {
+            dofs,
+            matrix,
+            elem_slots: Vec::new(),
+            r_full: vec![0.0; model.dof_count()],
+            energy: 0.0,
+            missing: Vec::new(),
+        };
+        a.build_slots(model);
+        a
+    }
+
+    fn build_slots(&mut self, model: &Model) {
+        self.elem_slots = model
+            .elements
+            .iter()
+            .map(|el| {
+                let e = element_eqs(&self.dofs, &el.nodes);
+                let mut s = [NONE; 64];
+                for i in 0..8 {
+                    for j in 0..8 {
+                        if let (Some(r), Some(c)) = (e[i], e[j]) {
+                            s[8 * i + j] = self.matrix.index(r, c).expect("element pattern") as u32;
+                        }
+                    }
+                }
+                s
+            })
+            .collect();
+    }
+
+    /// Assemble the residual (and the tangent if `with_tangent`) at displacement `u`, time `t`.
+    /// `alphas` (enhanced-strain parameters per element) are updated in place.
+    pub fn assemble(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        t: f64,
+        alphas: &mut [[f64; 4]],
+        contact: &mut ContactSystem,
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        loop {
+            self.r_full.fill(0.0);
+            self.matrix.clear_values();
+            self.energy = 0.0;
+            let mut re = [0.0; 8];
+            let mut ke = [0.0; 64];
+            for (ie, el) in model.elements.iter().enumerate() {
+                let body = &model.bodies[el.body];
+                let x: [[f64; 2]; 4] = el.nodes.map(|n| model.nodes[n]);
+                let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+                let k = if with_tangent { Some(&mut ke) } else { None };
+                self.energy += quad_residual_tangent(body.kind, &body.material, &x, &ue, &mut alphas[ie], &mut re, k)
+                    .map_err(|source| AssemblyError { element: ie, source })?;
+                for (i, &n) in el.nodes.iter().enumerate() {
+                    self.r_full[2 * n] += re[2 * i];
+                    self.r_full[2 * n + 1] += re[2 * i + 1];
+                }
+                if with_tangent {
+                    for (s, v) in self.elem_slots[ie].iter().zip(ke.iter()) {
+                        if *s != NONE {
+                            self.matrix.values[*s as usize] += v;
+                        }
+                    }
+                }
+            }
+            self.missing.clear();
+            let cfg = Config { model, u, t };
+            let (r_full, matrix, missing, dofs) = (&mut self.r_full, &mut self.matrix, &mut self.missing, &self.dofs);
+            contact.evaluate(&cfg, &mut |nodes, r, k| {
+                let nd = 2 * nodes.len();
+                let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
+                for i in 0..nd {
+                    r_full[dof(i)] += r[i];
+                }
+                if !with_tangent {
+                    return;
+                }
+                for i in 0..nd {
+                    let Some(ri) = dofs.eq[dof(i)] else { continue };
+                    for j in 0..nd {
+                        let Some(cj) = dofs.eq[dof(j)] else { continue };
+                        match matrix.index(ri, cj) {
+                            Some(s) => matrix.values[s] += k[nd * i + j],
+                            None => missing.push((ri, cj)),
+                        }
+                    }
+                }
+            });
+            if self.missing.is_empty() {
+                break;
+            }
+            // contact coupled new DOFs: grow the pattern (new symbolic analysis) and redo
+            let missing = std::mem::take(&mut self.missing);
+            self.matrix.extend(&missing);
+            self.build_slots(model);
+        }
+        for l in &model.loads {
+            self.r_full[l.dof] -= l.ramp.at(t);
+        }
+        Ok(())
+    }
+
+    /// Residual restricted to the free equations.
+    pub fn free_residual(&self, out: &mut [f64]) {
+        for (d, e) in self.dofs.eq.iter().enumerate() {
+            if let Some(e) = e {
+                out[*e] = self.r_full[d];
+            }
+        }
+    }
+}

@@ -1,0 +1,186 @@
+//! Global sparse matrix in compressed-column form: the pattern is built once (and only grows
+//! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
+//! factorisation (faer) is reused until the pattern changes.
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+
+/// Failure of the linear solve.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum LinearError {
+    #[error("sparse LU failed: {0}")]
+    Factorization(String),
+    #[error("linear solve produced non-finite values")]
+    NonFinite,
+}
+
+/// Square sparse matrix with a fixed pattern.
+pub struct SparseMatrix {
+    pub n: usize,
+    /// Row indices per column, sorted.
+    cols: Vec<Vec<usize>>,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    pub values: Vec<f64>,
+    symbolic: Option<SymbolicSparseColMat<usize>>,
+    lu_symbolic: Option<SymbolicLu<usize>>,
+    /// Number of symbolic factorisations performed (pattern changes + 1).
+    pub symbolic_factorizations: usize,
+}
+
+impl SparseMatrix {
+    /// Pattern from a list of coupled index groups (each group couples all its members).
+    pub fn new(n: usize, groups: &mut dyn Iterator<Item = Vec<usize>>) -> Self {
+        let mut cols: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (i, c) in cols.iter_mut().enumerate() {
+            c.push(i); // keep the diagonal even for DOFs nothing touches
+        }
+        for g in groups {
+            for &c in &g {
+                for &r in &g {
+                    cols[c].push(r);
+                }
+            }
+        }
+        let mut m = SparseMatrix {
+            n,
+            cols,
+            col_ptr: Vec::new(),
+            row_idx: Vec::new(),
+            values: Vec::new(),
+            symbolic: None,
+            lu_symbolic: None,
+            symbolic_factorizations: 0,
+        };
+        m.compress();
+        m
+    }
+
+    fn compress(&mut self) {
+        self.col_ptr.clear();
+        self.row_idx.clear();
+        self.col_ptr.push(0);
+        for c in &mut self.cols {
+            c.sort_unstable();
+            c.dedup();
+            self.row_idx.extend_from_slice(c);
+            self.col_ptr.push(self.row_idx.len());
+        }
+        self.values = vec![0.0; self.row_idx.len()];
+        self.symbolic = None;
+        self.lu_symbolic = None;
+    }
+
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Position of entry `(r, c)` in `values`, if it is in the pattern.
+    #[inline]
+    pub fn index(&self, r: usize, c: usize) -> Option<usize> {
+        let s = &self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]];
+        s.binary_search(&r).ok().map(|k| self.col_ptr[c] + k)
+    }
+
+    /// Add entries to the pattern; returns whether it changed (values are reset then).
+    pub fn extend(&mut self, entries: &[(usize, usize)]) -> bool {
+        let mut changed = false;
+        for &(r, c) in entries {
+            if self.index(r, c).is_none() {
+                self.cols[c].push(r);
+                changed = true;
+            }
+        }
+        if changed {
+            self.compress();
+        }
+        changed
+    }
+
+    pub fn clear_values(&mut self) {
+        self.values.fill(0.0);
+    }
+
+    /// `y = A x`.
+    pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        for c in 0..self.n {
+            for k in self.col_ptr[c]..self.col_ptr[c + 1] {
+                y[self.row_idx[k]] += self.values[k] * x[c];
+            }
+        }
+    }
+
+    /// Solve `A x = b` in place (LU with partial pivoting, symbolic analysis reused).
+    pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
+        if self.symbolic.is_none() {
+            self.symbolic = Some(SymbolicSparseColMat::new_checked(
+                self.n,
+                self.n,
+                self.col_ptr.clone(),
+                None,
+                self.row_idx.clone(),
+            ));
+        }
+        let sym = self.symbolic.as_ref().expect("set above");
+        if self.lu_symbolic.is_none() {
+            self.lu_symbolic =
+                Some(SymbolicLu::try_new(sym.as_ref()).map_err(|e| LinearError::Factorization(format!("{e:?}")))?);
+            self.symbolic_factorizations += 1;
+        }
+        let mat = SparseColMatRef::new(sym.as_ref(), &self.values);
+        let lu = Lu::try_new_with_symbolic(self.lu_symbolic.clone().expect("set above"), mat)
+            .map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
+        let mut rhs = faer::Mat::<f64>::from_fn(self.n, 1, |i, _| b[i]);
+        lu.solve_in_place(rhs.as_mut());
+        for (i, bi) in b.iter_mut().enumerate() {
+            *bi = rhs[(i, 0)];
+        }
+        if b.iter().any(|v| !v.is_finite()) {
+            return Err(LinearError::NonFinite);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unsymmetric_solve_and_pattern_growth() {
+        let mut groups = vec![vec![0, 1], vec![1, 2]].into_iter();
+        let mut a = SparseMatrix::new(3, &mut groups);
+        assert_eq!(a.nnz(), 7);
+        assert!(a.index(0, 2).is_none());
+        assert!(a.extend(&[(0, 2)]));
+        assert!(!a.extend(&[(0, 2)]));
+        // A = [[4,1,2],[0,3,1],[0,1,5]] (unsymmetric)
+        for (r, c, v) in [
+            (0, 0, 4.0),
+            (0, 1, 1.0),
+            (0, 2, 2.0),
+            (1, 1, 3.0),
+            (1, 2, 1.0),
+            (2, 1, 1.0),
+            (2, 2, 5.0),
+        ] {
+            let k = a.index(r, c).unwrap();
+            a.values[k] = v;
+        }
+        let x = [1.0, -2.0, 0.5];
+        let mut b = [0.0; 3];
+        a.mul(&x, &mut b);
+        a.solve(&mut b).unwrap();
+        for i in 0..3 {
+            assert!((b[i] - x[i]).abs() < 1e-14);
+        }
+        // refill values, same symbolic factorisation
+        a.values.iter_mut().for_each(|v| *v *= 2.0);
+        a.mul(&x, &mut b);
+        a.solve(&mut b).unwrap();
+        assert_eq!(a.symbolic_factorizations, 1);
+        assert!((b[1] + 2.0).abs() < 1e-14);
+    }
+}

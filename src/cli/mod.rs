@@ -1,0 +1,71 @@
+//! Command-line verbs, one file each.
+
+mod check;
+mod plot;
+mod progress;
+mod run;
+mod scenes;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// 2D frictional contact FE solver that records everything it does.
+#[derive(Parser, Debug)]
+#[command(name = "contrail", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// List the built-in scenes.
+    Scenes,
+    /// Run a scene (a built-in name or a TOML file).
+    Run(run::RunArgs),
+    /// Validate a scene without running it.
+    Check(check::CheckArgs),
+    /// Draw load–displacement curves of several runs (CSV files from `run --out`) on one chart.
+    Plot(plot::PlotArgs),
+    /// Print the JSON Schema of the scene format.
+    Schema,
+}
+
+/// Input the user must fix (exit code 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct BadInput(pub String);
+
+/// A run that started but did not complete (exit code 1, or 130 when interrupted).
+#[derive(Debug, thiserror::Error)]
+#[error("{message}")]
+pub struct RunFailed {
+    pub message: String,
+    pub interrupted: bool,
+}
+
+pub fn exit_code(e: &anyhow::Error) -> u8 {
+    if let Some(r) = e.downcast_ref::<RunFailed>() {
+        return if r.interrupted { 130 } else { 1 };
+    }
+    if e.downcast_ref::<contrail::scene::SceneError>().is_some() || e.downcast_ref::<BadInput>().is_some() {
+        return 2;
+    }
+    1
+}
+
+pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Scenes => scenes::list(),
+        Command::Run(a) => run::run(a),
+        Command::Check(a) => check::check(a),
+        Command::Plot(a) => plot::plot(a),
+        Command::Schema => {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&schemars::schema_for!(contrail::scene::SceneFile))?
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}

@@ -1,0 +1,207 @@
+//! Master-segment geometry in the current configuration and the closest-point projection
+//! (covariant description, Konyukhov & Schweizerhof, Comput Mech 35 (2005); notes §"Master
+//! segment").
+//!
+//! Conventions:
+//! - every master segment is parametrised by `ξ ∈ [−1, 1]`; `ρ(ξ)` is the surface point,
+//!   `ρ_1 = ∂ρ/∂ξ` the covariant tangent, `a11 = ρ_1·ρ_1`, `ρ^1 = ρ_1 / a11`;
+//! - the unit normal is `ρ_1` turned by −90°: `n = (ρ_1,y, −ρ_1,x)/√a11`, which is the
+//!   *outward* normal of the master body when its boundary runs counter-clockwise
+//!   (deformable faces) or with the body on the left (rigid surfaces);
+//! - the signed gap is `ζ = (r_s − ρ(ξ))·n`: `ζ < 0` means the slave has penetrated.
+//!
+//! A projection with `|ξ| > 1` belongs to a neighbouring segment; the search in
+//! [`super::search`] walks there.
+
+use super::scalar::{add, dot, lift, scale, sub, Scalar, V2};
+use crate::model::Piece;
+
+/// A master segment with its current geometry in scalar type `S`.
+#[derive(Debug, Clone, Copy)]
+pub enum SegmentGeom<S: Scalar> {
+    /// Linear segment between current node positions `x1` (ξ = −1) and `x2` (ξ = +1):
+    /// `ρ(ξ) = N1 x1 + N2 x2`, `N1,2 = (1 ∓ ξ)/2`, `ρ_1 = (x2 − x1)/2`.
+    Linear { x1: V2<S>, x2: V2<S> },
+    /// Rigid circular arc, translated by `offset`: `ρ = c + r (cos θ, sin θ)`,
+    /// `θ = θ₀ + (ξ + 1)(θ₁ − θ₀)/2`, `ρ_1 = r (θ₁ − θ₀)/2 (−sin θ, cos θ)`.
+    Arc {
+        centre: [f64; 2],
+        radius: f64,
+        theta0: f64,
+        theta1: f64,
+    },
+}
+
+/// Result of the closest-point projection of a slave point onto one segment.
+#[derive(Debug, Clone, Copy)]
+pub struct Projection<S: Scalar> {
+    /// Convective coordinate of the contact point (not clamped to `[−1, 1]`).
+    pub xi: S,
+    /// Signed normal gap `ζ` (negative = penetration).
+    pub gap: S,
+    /// Contact point `ρ(ξ)`.
+    pub rho: V2<S>,
+    /// Covariant tangent `ρ_1(ξ)`.
+    pub rho1: V2<S>,
+    /// Metric `a11 = ρ_1·ρ_1`.
+    pub a11: S,
+}
+
+impl<S: Scalar> Projection<S> {
+    /// Unit outward normal `n`.
+    pub fn normal(&self) -> V2<S> {
+        let inv = self.a11.sqrt().recip();
+        [self.rho1[1] * inv, -self.rho1[0] * inv]
+    }
+}
+
+impl<S: Scalar> SegmentGeom<S> {
+    /// Rigid piece translated by `offset`.
+    pub fn from_piece(piece: &Piece, offset: [f64; 2]) -> Self {
+        match *piece {
+            Piece::Segment { a, b } => SegmentGeom::Linear {
+                x1: lift([a[0] + offset[0], a[1] + offset[1]]),
+                x2: lift([b[0] + offset[0], b[1] + offset[1]]),
+            },
+            Piece::Arc {
+                centre,
+                radius,
+                theta0,
+                theta1,
+            } => SegmentGeom::Arc {
+                centre: [centre[0] + offset[0], centre[1] + offset[1]],
+                radius,
+                theta0,
+                theta1,
+            },
+        }
+    }
+
+    /// `ρ(ξ)` and `ρ_1(ξ)` at a given convective coordinate.
+    pub fn eval(&self, xi: S) -> (V2<S>, V2<S>) {
+        match *self {
+            SegmentGeom::Linear { x1, x2 } => {
+                let half = S::from(0.5);
+                let mid = scale(add(x1, x2), half);
+                let rho1 = scale(sub(x2, x1), half);
+                (add(mid, scale(rho1, xi)), rho1)
+            }
+            SegmentGeom::Arc {
+                centre,
+                radius,
+                theta0,
+                theta1,
+            } => {
+                let dth = 0.5 * (theta1 - theta0);
+                let th = xi * dth + (theta0 + dth);
+                let (s, c) = (th.sin(), th.cos());
+                (
+                    [c * radius + centre[0], s * radius + centre[1]],
+                    [s * (-radius * dth), c * (radius * dth)],
+                )
+            }
+        }
+    }
+
+    /// Closest-point projection of `rs` (explicit for both segment kinds):
+    /// linear: `ξ = (r_s − (x1 + x2)/2)·ρ_1 / a11`; arc: `ξ` from the polar angle of
+    /// `r_s − c`, unwrapped about the arc's mid-angle.
+    pub fn project(&self, rs: V2<S>) -> Projection<S> {
+        let xi = match *self {
+            SegmentGeom::Linear { x1, x2 } => {
+                let half = S::from(0.5);
+                let mid = scale(add(x1, x2), half);
+                let rho1 = scale(sub(x2, x1), half);
+                dot(sub(rs, mid), rho1) / dot(rho1, rho1)
+            }
+            SegmentGeom::Arc {
+                centre, theta0, theta1, ..
+            } => {
+                let d = sub(rs, lift(centre));
+                let mid = 0.5 * (theta0 + theta1);
+                // rotate d by −mid, then atan2 gives the angle relative to the mid-angle
+                let (sm, cm) = mid.sin_cos();
+                let dx = d[0] * cm + d[1] * sm;
+                let dy = d[1] * cm - d[0] * sm;
+                let rel = dy.atan2(dx);
+                rel * (2.0 / (theta1 - theta0))
+            }
+        };
+        let (rho, rho1) = self.eval(xi);
+        let a11 = dot(rho1, rho1);
+        let inv = a11.sqrt().recip();
+        let n = [rho1[1] * inv, -rho1[0] * inv];
+        let gap = dot(sub(rs, rho), n);
+        Projection {
+            xi,
+            gap,
+            rho,
+            rho1,
+            a11,
+        }
+    }
+
+    /// Current length of the segment (arc length for arcs).
+    pub fn length(&self) -> S {
+        match *self {
+            SegmentGeom::Linear { x1, x2 } => {
+                let d = sub(x2, x1);
+                dot(d, d).sqrt()
+            }
+            SegmentGeom::Arc {
+                radius, theta0, theta1, ..
+            } => S::from(radius * (theta1 - theta0).abs()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_projection_and_sign_convention() {
+        // bottom face of a body running +x: outward normal is −y
+        let s = SegmentGeom::<f64>::Linear {
+            x1: [0.0, 0.0],
+            x2: [2.0, 0.0],
+        };
+        let p = s.project([1.5, 0.1]); // slave above the bottom face = inside the body
+        assert!((p.xi - 0.5).abs() < 1e-15);
+        assert!((p.gap + 0.1).abs() < 1e-15, "penetration is negative");
+        assert_eq!(p.normal(), [0.0, -1.0]);
+        assert!((p.a11 - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn arc_projection_counter_clockwise_is_outside_of_disc() {
+        let s = SegmentGeom::<f64>::Arc {
+            centre: [0.0, 0.0],
+            radius: 2.0,
+            theta0: -2.5,
+            theta1: -0.6,
+        };
+        let mid = -1.55f64;
+        let p = s.project([3.0 * mid.cos(), 3.0 * mid.sin()]);
+        assert!(p.xi.abs() < 1e-12);
+        assert!((p.gap - 1.0).abs() < 1e-12);
+        let n = p.normal();
+        assert!((n[0] - mid.cos()).abs() < 1e-12 && (n[1] - mid.sin()).abs() < 1e-12);
+        // the end points map to ξ = ±1
+        let (r1, _) = s.eval(1.0);
+        assert!((s.project([r1[0] * 1.1, r1[1] * 1.1]).xi - 1.0).abs() < 1e-12);
+        assert!((s.length() - 3.8).abs() < 1e-12);
+    }
+
+    #[test]
+    fn projection_is_orthogonal() {
+        let s = SegmentGeom::<f64>::Linear {
+            x1: [0.3, -0.2],
+            x2: [1.7, 0.9],
+        };
+        let rs = [0.4, 1.1];
+        let p = s.project(rs);
+        let d = sub(rs, p.rho);
+        assert!(dot(d, p.rho1).abs() < 1e-14);
+    }
+}

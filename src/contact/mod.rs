@@ -1,0 +1,9 @@
+//! Node-to-segment frictional contact in the covariant description.
+
+pub mod geometry;
+pub mod law;
+pub mod point;
+pub mod scalar;
+pub mod search;
+pub mod system;
+pub mod transfer;

@@ -1,0 +1,236 @@
+//! Residual and consistent tangent of one node-to-segment contact point (all states: open,
+//! stick, slip, and the crossing step in which the element spans segments `A` and `B`).
+//!
+//! Virtual work of the point (Konyukhov & Schweizerhof, Comput Mech 35 (2005); notes
+//! §"Variations"): `δW = ε_N ζ δζ − T_1 δξ` for `ζ < 0`, zero otherwise, so the local
+//! residual (internal force) is `r = ε_N ζ ∇ζ − T_1 ∇ξ` and the tangent
+//! `K = ε_N (∇ζ ∇ζᵀ + ζ ∇²ζ) − ∇ξ ∇T_1ᵀ − T_1 ∇²ξ`,
+//! where `∇` is taken with respect to the current positions of the nodes involved (slave,
+//! nodes of `B` and, during a crossing step, nodes of `A`). `ζ(q)`, `ξ(q)` and `T_1(q)` are
+//! evaluated in second-order dual numbers, which yields `δζ`, `δξ` (notes formulas,
+//! including the `ζ n·δρ_1` term) and their linearisations exactly; the unsymmetric
+//! frictional blocks come from `∇T_1`. Each state's tangent is checked against finite
+//! differences in the tests.
+//!
+//! Sign: `T_1` acts on the slave (see [`super::law`]), so the slave's share of `r` is
+//! `−T_1 ρ^1` and the force on the slave is `+T`.
+
+use super::geometry::{Projection, SegmentGeom};
+use super::law::{return_map, ContactLaw, ContactState};
+use super::scalar::{lift, Scalar, V2};
+use super::transfer::{OldPoint, StoredTraction, TransferInput, TransferKind};
+use crate::model::Piece;
+use nalgebra::{Const, U1};
+use num_dual::Dual2SVec64;
+
+/// Largest number of nodes one contact point couples (slave + two segments of two nodes).
+pub const MAX_NODES: usize = 5;
+
+/// Where a point or segment end comes from: a local unknown (node slot) or fixed geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SegSource {
+    /// A deformable segment whose ends are local node slots.
+    Face([usize; 2]),
+    /// A rigid piece translated by an offset.
+    Rigid(Piece, [f64; 2]),
+}
+
+/// The slave position: a local node slot or a fixed (rigid, prescribed) point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SlaveSource {
+    Node(usize),
+    Fixed([f64; 2]),
+}
+
+/// How the current segment `B` was reached from `A` along the chain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Path {
+    /// +1: `B` lies after `A` (walking `next`), −1: before, 0: `A = B`.
+    pub direction: i8,
+    /// Summed current length of the segments strictly between `A` and `B` (held fixed).
+    pub between: f64,
+}
+
+/// History input of a point that was closed at the last converged increment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Closed {
+    pub stored: StoredTraction,
+    pub seg_a: SegSource,
+    pub path: Path,
+}
+
+/// Local data of one contact point: everything the kernel sees.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointProblem {
+    pub law: ContactLaw,
+    pub scheme: TransferKind,
+    /// Current positions of the local node slots.
+    pub x: [[f64; 2]; MAX_NODES],
+    pub n_nodes: usize,
+    pub slave: SlaveSource,
+    pub seg_b: SegSource,
+    /// `None` when the point was open at the last converged increment (no friction
+    /// history: the first closing increment is frictionless, its end fixes the anchor).
+    pub closed: Option<Closed>,
+}
+
+/// Result of a point evaluation in scalar type `S`.
+#[derive(Debug, Clone, Copy)]
+pub struct PointEval<S: Scalar> {
+    pub proj: Projection<S>,
+    pub normal_force: S,
+    pub t1_trial: S,
+    pub t1: S,
+    pub state: ContactState,
+}
+
+fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
+    match src {
+        SegSource::Face([a, b]) => SegmentGeom::Linear { x1: q[*a], x2: q[*b] },
+        SegSource::Rigid(p, off) => SegmentGeom::from_piece(p, *off),
+    }
+}
+
+impl PointProblem {
+    /// Evaluate gap, projection, trial and returned traction for node positions `q`.
+    pub fn evaluate<S: Scalar>(&self, q: &[V2<S>]) -> PointEval<S> {
+        let rs = match self.slave {
+            SlaveSource::Node(i) => q[i],
+            SlaveSource::Fixed(p) => lift(p),
+        };
+        let gb = seg_geom(&self.seg_b, q);
+        let proj = gb.project(rs);
+        let zero = S::from(0.0);
+        if proj.gap.re() >= 0.0 {
+            return PointEval {
+                proj,
+                normal_force: zero,
+                t1_trial: zero,
+                t1: zero,
+                state: ContactState::Open,
+            };
+        }
+        let normal_force = -proj.gap * self.law.eps_n;
+        let Some(c) = self.closed else {
+            let state = if self.law.mu > 0.0 {
+                ContactState::Stick
+            } else {
+                ContactState::Slip
+            };
+            return PointEval {
+                proj,
+                normal_force,
+                t1_trial: zero,
+                t1: zero,
+                state,
+            };
+        };
+        let ga = seg_geom(&c.seg_a, q);
+        let (rho_a, rho1_a) = ga.eval(S::from(c.stored.xi));
+        let arc_length = match c.path.direction {
+            0 => (proj.xi - c.stored.xi) * proj.a11.sqrt(),
+            1 => {
+                let la = dot_self(rho1_a).sqrt();
+                la * (1.0 - c.stored.xi) + c.path.between + (proj.xi + 1.0) * proj.a11.sqrt()
+            }
+            _ => {
+                let la = dot_self(rho1_a).sqrt();
+                -(la * (1.0 + c.stored.xi) + c.path.between + (-proj.xi + 1.0) * proj.a11.sqrt())
+            }
+        };
+        let input = TransferInput {
+            eps_t: self.law.eps_t,
+            stored: c.stored,
+            current: proj,
+            old: OldPoint {
+                rho: rho_a,
+                rho1: rho1_a,
+            },
+            arc_length,
+            crossing: c.path.direction != 0,
+        };
+        let t1_trial = self.scheme.trial(&input);
+        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11);
+        PointEval {
+            proj,
+            normal_force,
+            t1_trial,
+            t1,
+            state,
+        }
+    }
+
+    /// Positions of the slots as plain numbers.
+    fn q_f64(&self) -> Vec<V2<f64>> {
+        self.x[..self.n_nodes].to_vec()
+    }
+
+    /// Plain evaluation (for recording and search).
+    pub fn evaluate_f64(&self) -> PointEval<f64> {
+        self.evaluate(&self.q_f64())
+    }
+
+    /// Local residual `r` (length `2 n_nodes`) and tangent `k` (row-major) for this point;
+    /// returns the plain evaluation. Slot `i` owns local DOFs `2i, 2i + 1`.
+    pub fn residual_tangent(&self, r: &mut [f64], k: &mut [f64]) -> PointEval<f64> {
+        match self.n_nodes {
+            0 => self.evaluate_f64(),
+            1 => self.rk::<2>(r, k),
+            2 => self.rk::<4>(r, k),
+            3 => self.rk::<6>(r, k),
+            4 => self.rk::<8>(r, k),
+            _ => self.rk::<10>(r, k),
+        }
+    }
+
+    fn rk<const N: usize>(&self, r: &mut [f64], k: &mut [f64]) -> PointEval<f64> {
+        let q: Vec<V2<Dual2SVec64<N>>> = (0..self.n_nodes)
+            .map(|i| {
+                [
+                    Dual2SVec64::<N>::from_re(self.x[i][0]).derivative(2 * i),
+                    Dual2SVec64::<N>::from_re(self.x[i][1]).derivative(2 * i + 1),
+                ]
+            })
+            .collect();
+        let e = self.evaluate(&q);
+        r[..N].fill(0.0);
+        k[..N * N].fill(0.0);
+        if e.state != ContactState::Open {
+            let zeta = e.proj.gap;
+            let xi = e.proj.xi;
+            let gz = zeta.v1.unwrap_generic(U1, Const::<N>);
+            let hz = zeta.v2.unwrap_generic(Const::<N>, Const::<N>);
+            let gx = xi.v1.unwrap_generic(U1, Const::<N>);
+            let hx = xi.v2.unwrap_generic(Const::<N>, Const::<N>);
+            let gt = e.t1.v1.unwrap_generic(U1, Const::<N>);
+            let (en, z, t) = (self.law.eps_n, zeta.re, e.t1.re);
+            for i in 0..N {
+                r[i] = en * z * gz[i] - t * gx[i];
+                for j in 0..N {
+                    k[N * i + j] = en * (gz[i] * gz[j] + z * hz[(i, j)]) - gx[i] * gt[j] - t * hx[(i, j)];
+                }
+            }
+        }
+        PointEval {
+            proj: Projection {
+                xi: e.proj.xi.re,
+                gap: e.proj.gap.re,
+                rho: [e.proj.rho[0].re, e.proj.rho[1].re],
+                rho1: [e.proj.rho1[0].re, e.proj.rho1[1].re],
+                a11: e.proj.a11.re,
+            },
+            normal_force: e.normal_force.re,
+            t1_trial: e.t1_trial.re,
+            t1: e.t1.re,
+            state: e.state,
+        }
+    }
+}
+
+fn dot_self<S: Scalar>(a: V2<S>) -> S {
+    a[0] * a[0] + a[1] * a[1]
+}
+
+#[cfg(test)]
+#[path = "point_tests.rs"]
+mod tests;

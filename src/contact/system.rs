@@ -1,0 +1,408 @@
+//! The contact state of a whole model: per contact pair and slave point, the history of the
+//! last converged increment and the evaluation at the current iterate. It locates each
+//! slave, builds the local [`PointProblem`] (slots = the nodes the point couples), and hands
+//! local residuals and tangents to the caller's assembler — it never sees global equation
+//! numbers.
+
+use super::geometry::SegmentGeom;
+use super::law::ContactState;
+use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
+use super::search::{closest, walk, Located, SegmentGrid, XI_TOL};
+use super::transfer::StoredTraction;
+use crate::model::{ContactPair, Master, Model, RigidShape, Slave};
+use crate::record::{ContactPointRecord, CrossingRecord};
+
+/// History of one slave point at the last converged increment.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PointHistory {
+    /// Segment the point is tracked on (kept while open, for the neighbour walk).
+    pub segment: Option<usize>,
+    /// Closed (in contact) at the last converged increment.
+    pub closed: bool,
+    pub xi: f64,
+    /// Covariant traction `T_1` on `segment`.
+    pub t1: f64,
+    pub a11: f64,
+    pub crossings: u32,
+}
+
+/// Evaluation of one slave point at the current iterate.
+#[derive(Debug, Clone, Copy)]
+pub struct PointNow {
+    pub segment: Option<usize>,
+    pub eval: Option<PointEval<f64>>,
+    pub path: Path,
+}
+
+impl Default for PointNow {
+    fn default() -> Self {
+        PointNow {
+            segment: None,
+            eval: None,
+            path: Path {
+                direction: 0,
+                between: 0.0,
+            },
+        }
+    }
+}
+
+/// Contact state of all pairs.
+#[derive(Debug, Clone, Default)]
+pub struct ContactSystem {
+    pub committed: Vec<Vec<PointHistory>>,
+    pub current: Vec<Vec<PointNow>>,
+}
+
+/// Node positions and time the contact evaluation works on.
+pub struct Config<'a> {
+    pub model: &'a Model,
+    /// Full displacement vector (2 per node).
+    pub u: &'a [f64],
+    pub t: f64,
+}
+
+impl Config<'_> {
+    fn node(&self, n: usize) -> [f64; 2] {
+        let x = self.model.nodes[n];
+        [x[0] + self.u[2 * n], x[1] + self.u[2 * n + 1]]
+    }
+
+    fn slave_pos(&self, s: Slave) -> [f64; 2] {
+        match s {
+            Slave::Node(n) => self.node(n),
+            Slave::RigidPoint(r) => {
+                let body = &self.model.rigid[r];
+                let RigidShape::Point { at } = body.shape else {
+                    unreachable!("validated")
+                };
+                let o = body.offset(self.t);
+                [at[0] + o[0], at[1] + o[1]]
+            }
+        }
+    }
+
+    fn seg_source(&self, pair: &ContactPair, k: usize) -> (SegSource, Option<[usize; 2]>) {
+        match &pair.master {
+            Master::Face { segments, .. } => (SegSource::Face([0, 1]), Some(segments[k])),
+            Master::Rigid { body, .. } => {
+                let b = &self.model.rigid[*body];
+                let RigidShape::Surface { pieces } = &b.shape else {
+                    unreachable!("validated")
+                };
+                (SegSource::Rigid(pieces[k].clone(), b.offset(self.t)), None)
+            }
+        }
+    }
+
+    /// Current geometry of segment `k` of a pair's master.
+    pub fn segment(&self, pair: &ContactPair, k: usize) -> SegmentGeom<f64> {
+        match self.seg_source(pair, k) {
+            (_, Some([a, b])) => SegmentGeom::Linear {
+                x1: self.node(a),
+                x2: self.node(b),
+            },
+            (SegSource::Rigid(p, o), None) => SegmentGeom::from_piece(&p, o),
+            _ => unreachable!(),
+        }
+    }
+}
+
+/// Local node slots of one contact point.
+struct Slots {
+    nodes: Vec<usize>,
+}
+
+impl Slots {
+    fn slot(&mut self, n: usize) -> usize {
+        if let Some(i) = self.nodes.iter().position(|&m| m == n) {
+            return i;
+        }
+        self.nodes.push(n);
+        self.nodes.len() - 1
+    }
+    fn source(&mut self, cfg: &Config, pair: &ContactPair, k: usize) -> SegSource {
+        match cfg.seg_source(pair, k) {
+            (_, Some([a, b])) => SegSource::Face([self.slot(a), self.slot(b)]),
+            (src, None) => src,
+        }
+    }
+}
+
+/// Path from `a` to `b` along the chain (direction and length of the segments between).
+fn path_between(cfg: &Config, pair: &ContactPair, a: usize, b: usize) -> Path {
+    if a == b {
+        return Path {
+            direction: 0,
+            between: 0.0,
+        };
+    }
+    for (dir, pick) in [(1i8, 1usize), (-1, 0)] {
+        let mut k = a;
+        let mut between = 0.0;
+        for _ in 0..pair.master.segment_count() {
+            let nb = pair.master.neighbours(k);
+            let Some(n) = (if pick == 1 { nb.1 } else { nb.0 }) else {
+                break;
+            };
+            if n == b {
+                return Path {
+                    direction: dir,
+                    between,
+                };
+            }
+            between += cfg.segment(pair, n).length();
+            k = n;
+        }
+    }
+    Path {
+        direction: 1,
+        between: 0.0,
+    }
+}
+
+impl ContactSystem {
+    pub fn new(model: &Model) -> Self {
+        let committed: Vec<Vec<PointHistory>> = model
+            .contacts
+            .iter()
+            .map(|p| vec![PointHistory::default(); p.slaves.len()])
+            .collect();
+        let current = model
+            .contacts
+            .iter()
+            .map(|p| vec![PointNow::default(); p.slaves.len()])
+            .collect();
+        ContactSystem { committed, current }
+    }
+
+    /// Forget the current iterate (after a cut-back).
+    pub fn reset_current(&mut self) {
+        for pair in &mut self.current {
+            pair.iter_mut().for_each(|p| *p = PointNow::default());
+        }
+    }
+
+    /// `(state code, segment)` of every point at the current iterate (active-set changes).
+    pub fn signature(&self) -> Vec<(u8, Option<usize>)> {
+        self.current
+            .iter()
+            .flatten()
+            .map(|p| (p.eval.map_or(0, |e| e.state.code()), p.segment))
+            .collect()
+    }
+
+    /// Locate and evaluate every slave point; for each closed point call
+    /// `assemble(nodes, r, k)` with its local residual (`2·nodes.len()`) and tangent.
+    pub fn evaluate(&mut self, cfg: &Config, assemble: &mut dyn FnMut(&[usize], &[f64], &[f64])) {
+        let mut r = [0.0; 2 * MAX_NODES];
+        let mut k = [0.0; 4 * MAX_NODES * MAX_NODES];
+        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            let geom = |s: usize| cfg.segment(pair, s);
+            let nb = |s: usize| pair.master.neighbours(s);
+            let mut grid: Option<SegmentGrid> = None;
+            for (is, &slave) in pair.slaves.iter().enumerate() {
+                let rs = cfg.slave_pos(slave);
+                let hist = self.committed[ip][is];
+                let start = self.current[ip][is].segment.or(hist.segment);
+                let located: Option<Located> = match start {
+                    Some(s0) => Some(walk(s0, rs, &geom, &nb, pair.master.segment_count())),
+                    None => {
+                        let g = grid.get_or_insert_with(|| {
+                            SegmentGrid::new(
+                                (0..pair.master.segment_count()).map(|s| bbox(&geom(s))),
+                                pair.search_radius,
+                            )
+                        });
+                        closest(rs, g.candidates(rs), &geom, pair.search_radius)
+                    }
+                };
+                let now = &mut self.current[ip][is];
+                *now = PointNow::default();
+                let Some(loc) = located else { continue };
+                if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
+                    continue; // far away: untracked
+                }
+                now.segment = Some(loc.segment);
+                if loc.xi.abs() > 1.0 + XI_TOL {
+                    continue; // past a free end or in a convex-vertex gap: open
+                }
+                let mut slots = Slots {
+                    nodes: Vec::with_capacity(MAX_NODES),
+                };
+                let slave_src = match slave {
+                    Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
+                    Slave::RigidPoint(_) => SlaveSource::Fixed(rs),
+                };
+                let seg_b = slots.source(cfg, pair, loc.segment);
+                let closed = match (hist.closed, hist.segment) {
+                    (true, Some(a)) => {
+                        let path = path_between(cfg, pair, a, loc.segment);
+                        now.path = path;
+                        Some(Closed {
+                            stored: StoredTraction {
+                                xi: hist.xi,
+                                t1: hist.t1,
+                                a11: hist.a11,
+                            },
+                            seg_a: slots.source(cfg, pair, a),
+                            path,
+                        })
+                    }
+                    _ => None,
+                };
+                let mut x = [[0.0; 2]; MAX_NODES];
+                for (i, &n) in slots.nodes.iter().enumerate() {
+                    x[i] = cfg.node(n);
+                }
+                let problem = PointProblem {
+                    law: pair.law,
+                    scheme: pair.transfer,
+                    x,
+                    n_nodes: slots.nodes.len(),
+                    slave: slave_src,
+                    seg_b,
+                    closed,
+                };
+                let nd = 2 * slots.nodes.len();
+                let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
+                now.eval = Some(e);
+                if e.state != ContactState::Open && nd > 0 {
+                    assemble(&slots.nodes, &r[..nd], &k[..nd * nd]);
+                }
+            }
+        }
+    }
+
+    /// Accept the current iterate as converged; returns the crossing events of this increment.
+    pub fn commit(&mut self, cfg: &Config) -> Vec<CrossingRecord> {
+        let mut events = Vec::new();
+        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            for is in 0..pair.slaves.len() {
+                let now = self.current[ip][is];
+                let old = self.committed[ip][is];
+                let h = &mut self.committed[ip][is];
+                h.segment = now.segment;
+                match now.eval {
+                    Some(e) if e.state != ContactState::Open => {
+                        if let (true, Some(a), Some(b)) = (old.closed, old.segment, now.segment) {
+                            if a != b {
+                                h.crossings += 1;
+                                events.push(crossing_record(cfg, ip, is, a, b, &old, &e, now.path));
+                            }
+                        }
+                        h.closed = true;
+                        h.xi = e.proj.xi;
+                        h.t1 = e.t1;
+                        h.a11 = e.proj.a11;
+                    }
+                    _ => {
+                        h.closed = false;
+                        h.t1 = 0.0;
+                    }
+                }
+            }
+        }
+        events
+    }
+
+    /// Per-point records of the current iterate.
+    pub fn records(&self, cfg: &Config) -> Vec<ContactPointRecord> {
+        let mut out = Vec::new();
+        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            for (is, &slave) in pair.slaves.iter().enumerate() {
+                let now = &self.current[ip][is];
+                let hist = &self.committed[ip][is];
+                out.push(ContactPointRecord::new(cfg, ip, is, slave, pair, now, hist));
+            }
+        }
+        out
+    }
+}
+
+fn is_own_segment(pair: &ContactPair, slave: Slave, seg: usize) -> bool {
+    match (&pair.master, slave) {
+        (Master::Face { segments, .. }, Slave::Node(n)) => segments[seg].contains(&n),
+        _ => false,
+    }
+}
+
+fn bbox(g: &SegmentGeom<f64>) -> ([f64; 2], [f64; 2]) {
+    let pts: Vec<[f64; 2]> = (0..=8).map(|i| g.eval(-1.0 + 0.25 * i as f64).0).collect();
+    let lo = [
+        pts.iter().map(|p| p[0]).fold(f64::MAX, f64::min),
+        pts.iter().map(|p| p[1]).fold(f64::MAX, f64::min),
+    ];
+    let hi = [
+        pts.iter().map(|p| p[0]).fold(f64::MIN, f64::max),
+        pts.iter().map(|p| p[1]).fold(f64::MIN, f64::max),
+    ];
+    (lo, hi)
+}
+
+/// Crossing event: the trial traction just before transfer (the old segment `A` extended,
+/// same-segment formula) and just after (the pair's scheme on `B`), in the converged
+/// configuration, as physical tractions along each segment's unit tangent.
+#[allow(clippy::too_many_arguments)]
+fn crossing_record(
+    cfg: &Config,
+    ip: usize,
+    is: usize,
+    a: usize,
+    b: usize,
+    old: &PointHistory,
+    e: &PointEval<f64>,
+    path: Path,
+) -> CrossingRecord {
+    let pair = &cfg.model.contacts[ip];
+    let slave = pair.slaves[is];
+    let ga = cfg.segment(pair, a);
+    let (rho_a, _) = ga.eval(old.xi);
+    // A extended: same-segment trial on A's line at the current slave position
+    let mut slots = Slots { nodes: Vec::new() };
+    let rs = cfg.slave_pos(slave);
+    let slave_src = match slave {
+        Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
+        Slave::RigidPoint(_) => SlaveSource::Fixed(rs),
+    };
+    let seg_a = slots.source(cfg, pair, a);
+    let mut x = [[0.0; 2]; MAX_NODES];
+    for (i, &n) in slots.nodes.iter().enumerate() {
+        x[i] = cfg.node(n);
+    }
+    let ext = PointProblem {
+        law: pair.law,
+        scheme: pair.transfer,
+        x,
+        n_nodes: slots.nodes.len(),
+        slave: slave_src,
+        seg_b: seg_a,
+        closed: Some(Closed {
+            stored: StoredTraction {
+                xi: old.xi,
+                t1: old.t1,
+                a11: old.a11,
+            },
+            seg_a,
+            path: Path {
+                direction: 0,
+                between: 0.0,
+            },
+        }),
+    }
+    .evaluate_f64();
+    CrossingRecord {
+        pair: ip,
+        slave: is,
+        from_segment: a,
+        to_segment: b,
+        xi_from: old.xi,
+        xi_to: e.proj.xi,
+        xi_from_extended: ext.proj.xi,
+        delta_rho: [e.proj.rho[0] - rho_a[0], e.proj.rho[1] - rho_a[1]],
+        direction: path.direction,
+        trial_before: ext.t1_trial / ext.proj.a11.sqrt(),
+        trial_after: e.t1_trial / e.proj.a11.sqrt(),
+        returned_after: e.t1 / e.proj.a11.sqrt(),
+    }
+}

@@ -1,0 +1,4 @@
+//! Continuum element kernels: local data in, local residual and tangent out.
+
+pub mod material;
+pub mod quad;

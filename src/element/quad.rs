@@ -1,0 +1,317 @@
+//! Four-node plane-strain quadrilateral, total Lagrangian, with optional enhanced assumed
+//! strains (EAS) — the 2D counterpart of the seed's linear solid-shell element.
+//!
+//! # Formulation
+//! Nodes are numbered counter-clockwise; natural coordinates `(ξ, η) ∈ [−1, 1]²` with
+//! `N_I = ¼ (1 + ξ_I ξ)(1 + η_I η)`. With `F = I + Σ u_I ⊗ ∇_X N_I` the compatible
+//! Green–Lagrange strain is `E_c = ½ (FᵀF − I)` (Voigt, engineering shear, see
+//! [`super::material`]).
+//!
+//! `Q4Eas` enriches the Green–Lagrange strain with four incompatible modes
+//! (Andelfinger & Ramm, IJNME 36 (1993) 1311–1337; the EAS-4 space of Simo & Rifai,
+//! IJNME 29 (1990) 1595–1638, applied to `E` as in solid-shell elements, e.g.
+//! Klinkel & Wagner, IJNME 40 (1997) 4529–4545):
+//!
+//! `Ẽ = (j₀ / j) T₀ M(ξ, η) α`, `M = [[ξ,0,0,0],[0,η,0,0],[0,0,ξ,η]]`,
+//!
+//! where `j = det J`, `j₀` its value at the centre and `T₀` maps covariant strain
+//! components in `(ξ, η)` to Cartesian ones with `J₀⁻¹` (centre Jacobian). Because
+//! `∫ M dξ dη = 0`, the element passes the patch test; the `ξ` and `η` modes in the
+//! normal strains remove shear locking in bending and volumetric locking.
+//!
+//! The enhanced parameters `α` are element-internal: for the given displacements the kernel
+//! solves `R_α(u, α) = ∫ Gᵀ S dA = 0` by a local Newton iteration (exact in one step for
+//! St. Venant–Kirchhoff) and returns the statically condensed residual and tangent
+//! `R* = R_u − K_uα K_αα⁻¹ R_α`, `K* = K_uu − K_uα K_αα⁻¹ K_αu`,
+//! so the element is a function of `u` alone and `K* = ∂R*/∂u` exactly (checked by finite
+//! differences below). `Q4` is the plain bilinear element (it locks in bending; it is kept
+//! as the reference that shows why the enhancement is there).
+
+use super::material::{Material, MaterialError};
+use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// Which quadrilateral formulation an element uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum ElementKind {
+    /// Bilinear displacement element (locks in bending with one layer).
+    Q4,
+    /// Bilinear element with four enhanced strain modes (default; does not lock).
+    Q4Eas,
+}
+
+/// Failure of an element evaluation; the solver treats it as a divergent iteration.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum ElementError {
+    #[error("reference Jacobian det J = {0:.3e} ≤ 0 (nodes not counter-clockwise or degenerate)")]
+    BadGeometry(f64),
+    #[error(transparent)]
+    Material(#[from] MaterialError),
+    #[error("enhanced-strain parameters did not converge (|R_α| = {0:.3e})")]
+    EasNotConverged(f64),
+}
+
+type Mat38 = SMatrix<f64, 3, 8>;
+type Mat34 = SMatrix<f64, 3, 4>;
+type Mat88 = SMatrix<f64, 8, 8>;
+type Mat84 = SMatrix<f64, 8, 4>;
+type Mat44 = SMatrix<f64, 4, 4>;
+
+const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+const G: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
+const GAUSS: [(f64, f64); 4] = [(-G, -G), (G, -G), (G, G), (-G, G)];
+
+/// Shape-function derivatives with respect to `(ξ, η)`: `[[∂N_I/∂ξ], [∂N_I/∂η]]`.
+fn dn_dxi(xi: f64, eta: f64) -> [[f64; 4]; 2] {
+    let mut d = [[0.0; 4]; 2];
+    for (i, &(xa, ea)) in XI_NODES.iter().enumerate() {
+        d[0][i] = 0.25 * xa * (1.0 + ea * eta);
+        d[1][i] = 0.25 * ea * (1.0 + xa * xi);
+    }
+    d
+}
+
+/// Jacobian `J_ab = ∂X_a/∂ξ_b`.
+fn jacobian(x: &[[f64; 2]; 4], d: &[[f64; 4]; 2]) -> Matrix2<f64> {
+    let mut j = Matrix2::zeros();
+    for i in 0..4 {
+        for a in 0..2 {
+            for b in 0..2 {
+                j[(a, b)] += x[i][a] * d[b][i];
+            }
+        }
+    }
+    j
+}
+
+/// Per-Gauss-point quantities that do not depend on `α`.
+struct GaussData {
+    /// `∂N_I/∂X_a`
+    grad: [[f64; 4]; 2],
+    /// `j · w` (weights are 1 for 2×2 Gauss)
+    dv: f64,
+    f: Matrix2<f64>,
+    /// `δE_c = B δu`
+    b: Mat38,
+    /// `Ẽ = G α`
+    g: Mat34,
+}
+
+fn gauss_data(kind: ElementKind, x: &[[f64; 2]; 4], u: &[[f64; 2]; 4]) -> Result<[GaussData; 4], ElementError> {
+    let d0 = dn_dxi(0.0, 0.0);
+    let j0 = jacobian(x, &d0);
+    let det0 = j0.determinant();
+    if det0 <= 0.0 {
+        return Err(ElementError::BadGeometry(det0));
+    }
+    let a = j0.try_inverse().ok_or(ElementError::BadGeometry(det0))?;
+    // T0: covariant (ξ,η) Voigt strain -> Cartesian Voigt strain (engineering shear).
+    let t0 = Matrix3::new(
+        a[(0, 0)] * a[(0, 0)],
+        a[(1, 0)] * a[(1, 0)],
+        a[(0, 0)] * a[(1, 0)],
+        a[(0, 1)] * a[(0, 1)],
+        a[(1, 1)] * a[(1, 1)],
+        a[(0, 1)] * a[(1, 1)],
+        2.0 * a[(0, 0)] * a[(0, 1)],
+        2.0 * a[(1, 0)] * a[(1, 1)],
+        a[(0, 0)] * a[(1, 1)] + a[(1, 0)] * a[(0, 1)],
+    );
+    let mk = |&(xi, eta): &(f64, f64)| -> Result<GaussData, ElementError> {
+        let d = dn_dxi(xi, eta);
+        let jm = jacobian(x, &d);
+        let det = jm.determinant();
+        if det <= 0.0 {
+            return Err(ElementError::BadGeometry(det));
+        }
+        let jinv = jm.try_inverse().ok_or(ElementError::BadGeometry(det))?;
+        let mut grad = [[0.0; 4]; 2];
+        for i in 0..4 {
+            for a2 in 0..2 {
+                // ∂N/∂X_a = Σ_b ∂N/∂ξ_b (J⁻¹)_ba
+                grad[a2][i] = d[0][i] * jinv[(0, a2)] + d[1][i] * jinv[(1, a2)];
+            }
+        }
+        let mut f = Matrix2::identity();
+        for i in 0..4 {
+            for r in 0..2 {
+                for c in 0..2 {
+                    f[(r, c)] += u[i][r] * grad[c][i];
+                }
+            }
+        }
+        let mut b = Mat38::zeros();
+        for i in 0..4 {
+            let (n1, n2) = (grad[0][i], grad[1][i]);
+            for r in 0..2 {
+                b[(0, 2 * i + r)] = f[(r, 0)] * n1;
+                b[(1, 2 * i + r)] = f[(r, 1)] * n2;
+                b[(2, 2 * i + r)] = f[(r, 0)] * n2 + f[(r, 1)] * n1;
+            }
+        }
+        let g = match kind {
+            ElementKind::Q4 => Mat34::zeros(),
+            ElementKind::Q4Eas => {
+                let m = Mat34::new(xi, 0.0, 0.0, 0.0, 0.0, eta, 0.0, 0.0, 0.0, 0.0, xi, eta);
+                (det0 / det) * t0 * m
+            }
+        };
+        Ok(GaussData { grad, dv: det, f, b, g })
+    };
+    Ok([mk(&GAUSS[0])?, mk(&GAUSS[1])?, mk(&GAUSS[2])?, mk(&GAUSS[3])?])
+}
+
+fn green_lagrange(f: &Matrix2<f64>) -> Vector3<f64> {
+    let c = f.transpose() * f;
+    Vector3::new(0.5 * (c[(0, 0)] - 1.0), 0.5 * (c[(1, 1)] - 1.0), c[(0, 1)])
+}
+
+/// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness.
+///
+/// * `x` — reference nodal coordinates (counter-clockwise), `u` — nodal displacements;
+/// * `alpha` — enhanced-strain parameters: read as the starting guess, overwritten with the
+///   values that satisfy `R_α = 0` for this `u` (ignored for [`ElementKind::Q4`]);
+/// * `r` — internal force `R* = ∂Π/∂u` (condensed), local DOF order `[u1x, u1y, u2x, …]`;
+/// * `k` — `∂R*/∂u`, row-major 8×8, when requested.
+///
+/// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
+/// global residual is `r − f_ext`.
+pub fn quad_residual_tangent(
+    kind: ElementKind,
+    material: &Material,
+    x: &[[f64; 2]; 4],
+    u: &[[f64; 2]; 4],
+    alpha: &mut [f64; 4],
+    r: &mut [f64; 8],
+    k: Option<&mut [f64; 64]>,
+) -> Result<f64, ElementError> {
+    let gp = gauss_data(kind, x, u)?;
+    let ec: [Vector3<f64>; 4] = [
+        green_lagrange(&gp[0].f),
+        green_lagrange(&gp[1].f),
+        green_lagrange(&gp[2].f),
+        green_lagrange(&gp[3].f),
+    ];
+    let mut al = SVector::<f64, 4>::from_column_slice(alpha);
+    if kind == ElementKind::Q4 {
+        al.fill(0.0);
+    }
+    // Local Newton on α (one step is exact for linear S(E)).
+    let mut kaa = Mat44::zeros();
+    let mut ra = SVector::<f64, 4>::zeros();
+    if kind == ElementKind::Q4Eas {
+        let mut converged = false;
+        let mut last = 0.0;
+        for it in 0..25 {
+            kaa.fill(0.0);
+            ra.fill(0.0);
+            let mut scale = 0.0f64;
+            for (q, g) in gp.iter().enumerate() {
+                let e = ec[q] + g.g * al;
+                let (s, d) = material.stress_tangent(&e)?;
+                ra += g.g.transpose() * s * g.dv;
+                kaa += g.g.transpose() * d * g.g * g.dv;
+                scale = scale.max(d.norm() * g.dv);
+            }
+            last = ra.norm();
+            if it > 0 && last <= 1e-13 * scale.max(1e-300) * (1.0 + al.norm()) {
+                converged = true;
+                break;
+            }
+            let lu = kaa.lu();
+            let da = lu.solve(&ra).ok_or(ElementError::EasNotConverged(last))?;
+            al -= da;
+            if da.norm() <= 1e-15 * (1.0 + al.norm()) {
+                converged = true;
+                // refresh R_α, K_αα at the final α below
+                break;
+            }
+        }
+        if !converged {
+            return Err(ElementError::EasNotConverged(last));
+        }
+    }
+    let mut ru = SVector::<f64, 8>::zeros();
+    let mut kuu = Mat88::zeros();
+    let mut kua = Mat84::zeros();
+    kaa.fill(0.0);
+    ra.fill(0.0);
+    let mut energy = 0.0;
+    let want_k = k.is_some();
+    for (q, g) in gp.iter().enumerate() {
+        let e = ec[q] + g.g * al;
+        let (s, d) = material.stress_tangent(&e)?;
+        energy += material.energy(&e)? * g.dv;
+        ru += g.b.transpose() * s * g.dv;
+        if kind == ElementKind::Q4Eas {
+            ra += g.g.transpose() * s * g.dv;
+        }
+        if want_k {
+            let db = d * g.b;
+            kuu += g.b.transpose() * db * g.dv;
+            // geometric stiffness δ_ab ∇N_I · S ∇N_J
+            let sm = Matrix2::new(s[0], s[2], s[2], s[1]);
+            for i in 0..4 {
+                for j in 0..4 {
+                    let gi = nalgebra::Vector2::new(g.grad[0][i], g.grad[1][i]);
+                    let gj = nalgebra::Vector2::new(g.grad[0][j], g.grad[1][j]);
+                    let v = gi.dot(&(sm * gj)) * g.dv;
+                    kuu[(2 * i, 2 * j)] += v;
+                    kuu[(2 * i + 1, 2 * j + 1)] += v;
+                }
+            }
+            if kind == ElementKind::Q4Eas {
+                kua += db.transpose() * g.g * g.dv;
+                kaa += g.g.transpose() * d * g.g * g.dv;
+            }
+        } else if kind == ElementKind::Q4Eas {
+            kaa += g.g.transpose() * d * g.g * g.dv;
+            kua += (d * g.b).transpose() * g.g * g.dv;
+        }
+    }
+    if kind == ElementKind::Q4Eas {
+        let inv = kaa.try_inverse().ok_or(ElementError::EasNotConverged(ra.norm()))?;
+        ru -= kua * (inv * ra);
+        if let Some(kout) = k {
+            kuu -= kua * inv * kua.transpose();
+            write_k(&kuu, kout);
+        }
+        alpha.copy_from_slice(al.as_slice());
+    } else if let Some(kout) = k {
+        write_k(&kuu, kout);
+    }
+    r.copy_from_slice(ru.as_slice());
+    Ok(energy)
+}
+
+fn write_k(k: &Mat88, out: &mut [f64; 64]) {
+    for i in 0..8 {
+        for j in 0..8 {
+            out[8 * i + j] = k[(i, j)];
+        }
+    }
+}
+
+/// Green–Lagrange strain and second Piola–Kirchhoff stress at the element centre (for output).
+pub fn quad_centre_stress(
+    kind: ElementKind,
+    material: &Material,
+    x: &[[f64; 2]; 4],
+    u: &[[f64; 2]; 4],
+    alpha: &[f64; 4],
+) -> Result<(Vector3<f64>, Vector3<f64>), ElementError> {
+    let gp = gauss_data(kind, x, u)?;
+    let al = SVector::<f64, 4>::from_column_slice(alpha);
+    // centre value = Gauss average (the enhanced field averages to zero)
+    let mut e = Vector3::zeros();
+    for g in &gp {
+        e += 0.25 * (green_lagrange(&g.f) + g.g * al);
+    }
+    let (s, _) = material.stress_tangent(&e)?;
+    Ok((e, s))
+}
+
+#[cfg(test)]
+#[path = "quad_tests.rs"]
+mod tests;

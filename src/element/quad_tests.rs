@@ -1,0 +1,139 @@
+use super::*;
+use crate::element::material::lame;
+use proptest::prelude::*;
+
+const X: [[f64; 2]; 4] = [[0.0, 0.0], [1.3, 0.1], [1.1, 0.9], [-0.1, 0.7]];
+
+fn materials() -> [Material; 2] {
+    let (l, m) = lame(2.1e4, 0.3);
+    [
+        Material::SaintVenantKirchhoff { lambda: l, mu: m },
+        Material::NeoHookean { lambda: l, mu: m },
+    ]
+}
+
+fn eval(kind: ElementKind, m: &Material, u: &[[f64; 2]; 4]) -> ([f64; 8], [f64; 64]) {
+    let mut a = [0.0; 4];
+    let mut r = [0.0; 8];
+    let mut k = [0.0; 64];
+    quad_residual_tangent(kind, m, &X, u, &mut a, &mut r, Some(&mut k)).unwrap();
+    (r, k)
+}
+
+fn fd_check(kind: ElementKind, m: &Material, u: [[f64; 2]; 4]) {
+    let (_, k) = eval(kind, m, &u);
+    let h = 1e-6;
+    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    for j in 0..8 {
+        let mut up = u;
+        let mut um = u;
+        up[j / 2][j % 2] += h;
+        um[j / 2][j % 2] -= h;
+        let (rp, _) = eval(kind, m, &up);
+        let (rm, _) = eval(kind, m, &um);
+        for i in 0..8 {
+            let fd = (rp[i] - rm[i]) / (2.0 * h);
+            assert!(
+                (fd - k[8 * i + j]).abs() < 1e-6 * kmax,
+                "{kind:?} {m:?}: K[{i},{j}] = {} vs FD {fd}",
+                k[8 * i + j]
+            );
+        }
+    }
+}
+
+const U_LARGE: [[f64; 2]; 4] = [[0.0, 0.0], [0.12, 0.05], [0.02, 0.21], [-0.08, 0.03]];
+
+#[test]
+fn tangent_matches_finite_differences_for_every_kind_and_material() {
+    for m in materials() {
+        for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
+            fd_check(kind, &m, U_LARGE);
+            fd_check(kind, &m, [[0.0; 2]; 4]);
+        }
+    }
+}
+
+#[test]
+fn residual_is_energy_gradient() {
+    // R* = dΠ/du for the condensed element (α solved for each u).
+    for m in materials() {
+        let kind = ElementKind::Q4Eas;
+        let (r, _) = eval(kind, &m, &U_LARGE);
+        let h = 1e-6;
+        for j in 0..8 {
+            let mut up = U_LARGE;
+            let mut um = U_LARGE;
+            up[j / 2][j % 2] += h;
+            um[j / 2][j % 2] -= h;
+            let en = |u: &[[f64; 2]; 4]| {
+                let mut a = [0.0; 4];
+                let mut rr = [0.0; 8];
+                quad_residual_tangent(kind, &m, &X, u, &mut a, &mut rr, None).unwrap()
+            };
+            let fd = (en(&up) - en(&um)) / (2.0 * h);
+            assert!(
+                (fd - r[j]).abs() < 1e-5 * (1.0 + r[j].abs()),
+                "dof {j}: {fd} vs {}",
+                r[j]
+            );
+        }
+    }
+}
+
+#[test]
+fn inverted_reference_element_is_rejected() {
+    let x = [X[0], X[3], X[2], X[1]]; // clockwise
+    let mut a = [0.0; 4];
+    let mut r = [0.0; 8];
+    let m = materials()[0];
+    let e = quad_residual_tangent(ElementKind::Q4Eas, &m, &x, &[[0.0; 2]; 4], &mut a, &mut r, None);
+    assert!(matches!(e, Err(ElementError::BadGeometry(_))));
+}
+
+proptest! {
+    /// Rigid motion (any rotation and translation) produces no internal force and no
+    /// enhanced strain, for both materials and both formulations.
+    #[test]
+    fn rigid_motion_is_stress_free(theta in -3.1f64..3.1, tx in -5.0f64..5.0, ty in -5.0f64..5.0) {
+        let (c, s) = (theta.cos(), theta.sin());
+        let mut u = [[0.0; 2]; 4];
+        for i in 0..4 {
+            let (x, y) = (X[i][0], X[i][1]);
+            u[i] = [c * x - s * y + tx - x, s * x + c * y + ty - y];
+        }
+        for m in materials() {
+            for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
+                let mut a = [3e-3, -2e-3, 1e-3, 5e-4];
+                let mut r = [0.0; 8];
+                quad_residual_tangent(kind, &m, &X, &u, &mut a, &mut r, None).unwrap();
+                let n = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+                prop_assert!(n < 1e-8, "{:?} {:?}: |R| = {}", kind, m, n);
+                if kind == ElementKind::Q4Eas {
+                    prop_assert!(a.iter().all(|v| v.abs() < 1e-10));
+                }
+            }
+        }
+    }
+
+    /// Frame independence: rotating a deformed configuration rotates the internal forces.
+    #[test]
+    fn internal_force_is_objective(theta in -3.1f64..3.1) {
+        let (c, s) = (theta.cos(), theta.sin());
+        for m in materials() {
+            let (r0, _) = eval(ElementKind::Q4Eas, &m, &U_LARGE);
+            let mut u = [[0.0; 2]; 4];
+            for i in 0..4 {
+                let (x, y) = (X[i][0] + U_LARGE[i][0], X[i][1] + U_LARGE[i][1]);
+                u[i] = [c * x - s * y - X[i][0], s * x + c * y - X[i][1]];
+            }
+            let (r1, _) = eval(ElementKind::Q4Eas, &m, &u);
+            for i in 0..4 {
+                let rx = c * r0[2 * i] - s * r0[2 * i + 1];
+                let ry = s * r0[2 * i] + c * r0[2 * i + 1];
+                prop_assert!((rx - r1[2 * i]).abs() < 1e-7 * (1.0 + rx.abs()));
+                prop_assert!((ry - r1[2 * i + 1]).abs() < 1e-7 * (1.0 + ry.abs()));
+            }
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! # contrail
+//!
+//! A 2D finite-element solver for frictional contact in the covariant description
+//! (Konyukhov & Schweizerhof) with continuous transfer of history variables across master
+//! segments, that reports everything it does to observers (MCAP, rerun, CSV, JSON lines).
+//!
+//! Data flow: [`scene`] (TOML) → [`model`] → kernels ([`element`], [`contact`]) →
+//! [`assembly`] → [`solver`] (Newton, load stepping) → [`record`] (observers).
+
+pub mod analysis;
+pub mod assembly;
+pub mod contact;
+pub mod element;
+pub mod model;
+pub mod record;
+pub mod scene;
+pub mod solver;
+
+/// Version of the crate (recorded in every run).
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Git revision the crate was built from (`unknown` outside a checkout).
+pub const GIT_REVISION: &str = env!("CONTRAIL_GIT_REV");
+
+/// Load a scene (built-in name or path), apply overrides and build its model.
+pub fn load_scene(
+    name_or_path: &str,
+    sets: &[String],
+) -> Result<(scene::SceneSource, model::Model), scene::SceneError> {
+    let src = scene::SceneSource::resolve(name_or_path)?;
+    let file = scene::parse(&src, sets)?;
+    let model = scene::build_model(&src, &file)?;
+    Ok((src, model))
+}
+
+/// Run metadata for a model.
+pub fn run_info(src: &scene::SceneSource, sets: &[String], model: &model::Model) -> record::RunInfo {
+    let asm_free = assembly::DofMap::new(model).n_free;
+    record::RunInfo {
+        scene: model.name.clone(),
+        scene_origin: src.origin.clone(),
+        scene_text: src.text.clone(),
+        overrides: sets.to_vec(),
+        crate_version: VERSION.to_string(),
+        git_revision: GIT_REVISION.to_string(),
+        transfer: model.contacts.iter().map(|c| c.transfer.name().to_string()).collect(),
+        dofs: model.dof_count(),
+        free_dofs: asm_free,
+    }
+}

@@ -1,0 +1,152 @@
+//! What a scene becomes: nodes, elements, materials, constraints, rigid geometry and contact
+//! pairs, with everything resolved to indices. The model is immutable during a run.
+
+pub mod mesh;
+pub mod ramp;
+pub mod rigid;
+
+use crate::contact::law::ContactLaw;
+use crate::contact::transfer::TransferKind;
+use crate::element::material::Material;
+use crate::element::quad::ElementKind;
+use crate::solver::settings::{NewtonSettings, Stepping};
+pub use ramp::Ramp;
+pub use rigid::{Piece, RigidBody, RigidShape};
+use std::collections::BTreeMap;
+
+/// One quadrilateral element.
+#[derive(Debug, Clone)]
+pub struct Element {
+    pub nodes: [usize; 4],
+    pub body: usize,
+}
+
+/// A deformable body: its nodes are `first_node .. first_node + node_count`.
+#[derive(Debug, Clone)]
+pub struct Body {
+    pub name: String,
+    pub material: Material,
+    pub kind: ElementKind,
+    pub first_node: usize,
+    pub node_count: usize,
+    /// Named node sets (global node ids).
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    /// Named boundary faces (global node ids), counter-clockwise around the body.
+    pub faces: BTreeMap<String, Vec<[usize; 2]>>,
+}
+
+/// Prescribed value of one degree of freedom (`dof = 2 node + component`).
+#[derive(Debug, Clone)]
+pub struct Prescribed {
+    pub dof: usize,
+    pub ramp: Ramp,
+}
+
+/// Dead nodal force on one degree of freedom.
+#[derive(Debug, Clone)]
+pub struct NodalLoad {
+    pub dof: usize,
+    pub ramp: Ramp,
+}
+
+/// A contact slave: a node of a deformable body or a rigid point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Slave {
+    Node(usize),
+    RigidPoint(usize),
+}
+
+/// A contact master surface.
+#[derive(Debug, Clone)]
+pub enum Master {
+    /// A face of a deformable body: linear segments `[a, b]` with their neighbours.
+    Face {
+        body: usize,
+        segments: Vec<[usize; 2]>,
+        prev: Vec<Option<usize>>,
+        next: Vec<Option<usize>>,
+    },
+    /// A rigid surface (index into [`Model::rigid`]); piece `k` neighbours `k ± 1`.
+    Rigid {
+        body: usize,
+        prev: Vec<Option<usize>>,
+        next: Vec<Option<usize>>,
+    },
+}
+
+impl Master {
+    pub fn segment_count(&self) -> usize {
+        match self {
+            Master::Face { segments, .. } => segments.len(),
+            Master::Rigid { prev, .. } => prev.len(),
+        }
+    }
+    pub fn neighbours(&self, seg: usize) -> (Option<usize>, Option<usize>) {
+        match self {
+            Master::Face { prev, next, .. } | Master::Rigid { prev, next, .. } => (prev[seg], next[seg]),
+        }
+    }
+}
+
+/// A node-to-segment contact pair.
+#[derive(Debug, Clone)]
+pub struct ContactPair {
+    pub name: String,
+    pub slaves: Vec<Slave>,
+    pub master: Master,
+    pub law: ContactLaw,
+    pub transfer: TransferKind,
+    /// Slaves farther than this from a segment are not searched against it.
+    pub search_radius: f64,
+}
+
+/// Load–displacement monitor: mean displacement of a node set in one direction and the sum
+/// of the forces (reactions where prescribed, applied loads elsewhere) on it.
+#[derive(Debug, Clone)]
+pub struct Monitor {
+    pub label: String,
+    pub nodes: Vec<usize>,
+    pub component: usize,
+    /// `-1` to report displacement and force with flipped sign (e.g. a downward push).
+    pub sign: f64,
+}
+
+/// The resolved model.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub name: String,
+    pub description: String,
+    pub nodes: Vec<[f64; 2]>,
+    pub elements: Vec<Element>,
+    pub bodies: Vec<Body>,
+    pub prescribed: Vec<Prescribed>,
+    pub loads: Vec<NodalLoad>,
+    pub rigid: Vec<RigidBody>,
+    pub contacts: Vec<ContactPair>,
+    pub stepping: Stepping,
+    pub newton: NewtonSettings,
+    pub monitor: Option<Monitor>,
+}
+
+impl Model {
+    pub fn dof_count(&self) -> usize {
+        2 * self.nodes.len()
+    }
+}
+
+/// Neighbour lists of a chain of segments (neighbours share an end node).
+pub fn chain_neighbours(segments: &[[usize; 2]]) -> (Vec<Option<usize>>, Vec<Option<usize>>) {
+    let n = segments.len();
+    let starts: std::collections::HashMap<usize, usize> = segments.iter().enumerate().map(|(k, s)| (s[0], k)).collect();
+    let mut prev = vec![None; n];
+    let mut next = vec![None; n];
+    for (k, s) in segments.iter().enumerate() {
+        if let Some(&l) = starts.get(&s[1]) {
+            if l != k {
+                next[k] = Some(l);
+                prev[l] = Some(k);
+            }
+        }
+    }
+    (prev, next)
+}

@@ -1,0 +1,61 @@
+//! CSV sink: the load–displacement history, one row per converged increment.
+
+use super::{IncrementRecord, Observer, ObserverError, Outcome, StepView};
+use std::io::Write;
+
+pub struct CsvSink<W: Write> {
+    out: W,
+    name: String,
+}
+
+impl<W: Write> CsvSink<W> {
+    pub fn new(out: W, name: &str) -> Self {
+        CsvSink {
+            out,
+            name: name.to_string(),
+        }
+    }
+    fn err(&self, e: std::io::Error) -> ObserverError {
+        ObserverError::new(&self.name, e)
+    }
+}
+
+impl<W: Write> Observer for CsvSink<W> {
+    fn start(&mut self, _m: &crate::model::Model, _i: &super::RunInfo) -> Result<(), ObserverError> {
+        writeln!(
+            self.out,
+            "increment,t,displacement,force,iterations,cutbacks,reaction_x,reaction_y,contact_closed,crossings"
+        )
+        .map_err(|e| self.err(e))
+    }
+    fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+        let (d, f) = rec
+            .monitor
+            .as_ref()
+            .map(|m| (m.displacement, m.force))
+            .unwrap_or((f64::NAN, f64::NAN));
+        let closed = view
+            .contact
+            .iter()
+            .filter(|c| c.state != crate::contact::law::ContactState::Open)
+            .count();
+        writeln!(
+            self.out,
+            "{},{:.10e},{:.10e},{:.10e},{},{},{:.10e},{:.10e},{},{}",
+            rec.increment,
+            rec.t,
+            d,
+            f,
+            rec.iterations,
+            rec.cutbacks,
+            rec.reaction_total[0],
+            rec.reaction_total[1],
+            closed,
+            view.crossings.len()
+        )
+        .map_err(|e| self.err(e))
+    }
+    fn finish(&mut self, _o: &Outcome) -> Result<(), ObserverError> {
+        self.out.flush().map_err(|e| self.err(e))
+    }
+}

@@ -1,0 +1,252 @@
+//! What the solver reports, and to whom: record types (serde + JSON Schema) and the
+//! [`Observer`] trait that sinks implement. The solver never does I/O itself.
+
+pub mod csv;
+pub mod jsonl;
+mod observer;
+
+pub use observer::{Fanout, Memory, Observer, ObserverError};
+
+use crate::contact::law::ContactState;
+use crate::contact::system::{Config, PointHistory, PointNow};
+use crate::model::{ContactPair, Slave};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Facts about a run known before it starts.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct RunInfo {
+    pub scene: String,
+    /// Where the scene came from (`builtin:NAME` or a path).
+    pub scene_origin: String,
+    /// The scene text as given (before `--set` overrides).
+    pub scene_text: String,
+    /// `--set` overrides, in order.
+    pub overrides: Vec<String>,
+    pub crate_version: String,
+    pub git_revision: String,
+    /// Transfer scheme of each contact pair.
+    pub transfer: Vec<String>,
+    pub dofs: usize,
+    pub free_dofs: usize,
+}
+
+/// One Newton iteration.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct IterationRecord {
+    /// Increment being attempted (1-based; a cut-back retries the same number).
+    pub increment: usize,
+    /// Attempt of this increment (0 = first try, k = after k cut-backs).
+    pub attempt: usize,
+    pub t: f64,
+    pub iteration: usize,
+    /// `‖R‖` over the free DOFs at the iterate this correction started from.
+    pub residual: f64,
+    /// `|Δu · R|` of the correction.
+    pub energy: f64,
+    /// Reference force `F_ref` of the residual criterion.
+    pub reference: f64,
+    /// Line-search factor applied to the correction (1 without line search).
+    pub line_search: f64,
+    /// Contact points whose state or segment changed since the previous iterate.
+    pub active_set_changes: usize,
+}
+
+/// A reaction (or applied) force summed over a monitored node set.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct MonitorRecord {
+    pub label: String,
+    /// Mean displacement of the set in the monitored direction (sign as configured).
+    pub displacement: f64,
+    /// Sum of reactions/loads on the set in that direction (sign as configured).
+    pub force: f64,
+}
+
+/// A converged increment.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct IncrementRecord {
+    pub increment: usize,
+    pub t: f64,
+    pub dt: f64,
+    pub iterations: usize,
+    /// Cut-backs needed by this increment.
+    pub cutbacks: usize,
+    pub converged: bool,
+    pub wall_time_s: f64,
+    /// Residual norms of the iterations of this increment.
+    pub residuals: Vec<f64>,
+    pub monitor: Option<MonitorRecord>,
+    /// Sum of all reaction forces (x, y).
+    pub reaction_total: [f64; 2],
+}
+
+/// State of one contact slave point at the end of an increment.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct ContactPointRecord {
+    pub pair: usize,
+    pub pair_name: String,
+    pub slave: usize,
+    /// `node N` or `rigid NAME`.
+    pub slave_label: String,
+    /// Master segment of the current projection (None: no segment within reach).
+    pub segment: Option<usize>,
+    /// Segment at the previous converged increment.
+    pub previous_segment: Option<usize>,
+    pub xi: f64,
+    /// Centre of the elastic region (sliding anchor) `ξ_sl = ξ + T_1/(ε_T a11)` on `segment`.
+    pub xi_anchor: f64,
+    /// Signed gap `ζ` (negative = penetration).
+    pub gap: f64,
+    pub normal_force: f64,
+    /// Trial tangential traction along the unit tangent (before return mapping).
+    pub trial_traction: f64,
+    /// Returned tangential traction along the unit tangent.
+    pub traction: f64,
+    pub state: ContactState,
+    /// The point moved to another segment in this increment.
+    pub crossing: bool,
+    /// Slave position and contact point `ρ(ξ)`.
+    pub position: [f64; 2],
+    pub contact_point: [f64; 2],
+    /// Unit normal and unit tangent of the master at the contact point.
+    pub normal: [f64; 2],
+    pub tangent: [f64; 2],
+}
+
+impl ContactPointRecord {
+    pub(crate) fn new(
+        cfg: &Config,
+        pair_index: usize,
+        slave_index: usize,
+        slave: Slave,
+        pair: &ContactPair,
+        now: &PointNow,
+        hist: &PointHistory,
+    ) -> Self {
+        let label = match slave {
+            Slave::Node(n) => format!("node {n}"),
+            Slave::RigidPoint(r) => format!("rigid {}", cfg.model.rigid[r].name),
+        };
+        let pos = match (slave, now.eval) {
+            (Slave::Node(n), _) => {
+                let x = cfg.model.nodes[n];
+                [x[0] + cfg.u[2 * n], x[1] + cfg.u[2 * n + 1]]
+            }
+            (_, Some(e)) => {
+                let n = e.proj.normal();
+                [e.proj.rho[0] + e.proj.gap * n[0], e.proj.rho[1] + e.proj.gap * n[1]]
+            }
+            _ => [f64::NAN; 2],
+        };
+        let mut r = ContactPointRecord {
+            pair: pair_index,
+            pair_name: pair.name.clone(),
+            slave: slave_index,
+            slave_label: label,
+            segment: now.segment,
+            previous_segment: hist.segment,
+            xi: f64::NAN,
+            xi_anchor: f64::NAN,
+            gap: f64::NAN,
+            normal_force: 0.0,
+            trial_traction: 0.0,
+            traction: 0.0,
+            state: ContactState::Open,
+            crossing: false,
+            position: pos,
+            contact_point: [f64::NAN; 2],
+            normal: [f64::NAN; 2],
+            tangent: [f64::NAN; 2],
+        };
+        if let Some(e) = now.eval {
+            let sq = e.proj.a11.sqrt();
+            r.xi = e.proj.xi;
+            r.gap = e.proj.gap;
+            r.normal_force = e.normal_force;
+            r.trial_traction = e.t1_trial / sq;
+            r.traction = e.t1 / sq;
+            r.state = e.state;
+            r.xi_anchor = if e.state == ContactState::Open || pair.law.eps_t == 0.0 {
+                f64::NAN
+            } else {
+                e.proj.xi + e.t1 / (pair.law.eps_t * e.proj.a11)
+            };
+            r.crossing = e.state != ContactState::Open && hist.closed && hist.segment != now.segment;
+            r.contact_point = e.proj.rho;
+            r.normal = e.proj.normal();
+            r.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
+        }
+        r
+    }
+}
+
+/// A contact point moved from segment `A` to `B` in a converged increment.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct CrossingRecord {
+    pub pair: usize,
+    pub slave: usize,
+    pub from_segment: usize,
+    pub to_segment: usize,
+    /// `ξ_A` (stored) and `ξ_B` (current).
+    pub xi_from: f64,
+    pub xi_to: f64,
+    /// Projection of the current slave position on `A`'s extension (`|ξ| > 1`).
+    pub xi_from_extended: f64,
+    /// `Δρ = ρ_B(ξ_B) − ρ_A(ξ_A)` in the current configuration (seed eq. 2).
+    pub delta_rho: [f64; 2],
+    /// +1 forward along the chain, −1 backward.
+    pub direction: i8,
+    /// Trial traction on `A` extended (same-segment formula), along `A`'s unit tangent.
+    pub trial_before: f64,
+    /// Trial traction on `B` after transfer by the pair's scheme, along `B`'s unit tangent.
+    pub trial_after: f64,
+    /// Returned traction on `B`.
+    pub returned_after: f64,
+}
+
+/// Severity of a log message.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum LogLevel {
+    Info,
+    Warning,
+    Error,
+}
+
+/// A message for humans (cut-backs, failures, interruption).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct LogRecord {
+    pub level: LogLevel,
+    pub increment: usize,
+    pub t: f64,
+    pub message: String,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema, PartialEq)]
+#[serde(tag = "status", rename_all = "lowercase")]
+pub enum Outcome {
+    Completed {
+        increments: usize,
+        t: f64,
+    },
+    Failed {
+        increment: usize,
+        t: f64,
+        reason: String,
+        residuals: Vec<f64>,
+    },
+    Interrupted {
+        increment: usize,
+        t: f64,
+    },
+}
+
+/// What an observer sees at the end of a converged increment.
+pub struct StepView<'a> {
+    pub model: &'a crate::model::Model,
+    /// Full displacement vector (2 per node).
+    pub u: &'a [f64],
+    pub contact: &'a [ContactPointRecord],
+    pub crossings: &'a [CrossingRecord],
+}

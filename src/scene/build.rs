@@ -1,0 +1,351 @@
+//! Resolve a checked scene into a [`Model`]: mesh generation, node selections, constraints,
+//! rigid geometry and contact pairs, with errors that point at the offending name.
+
+use super::types::*;
+use super::{locate, SceneError, SceneSource};
+use crate::contact::law::ContactLaw;
+use crate::element::material::{lame, Material};
+use crate::model::mesh::RectMesh;
+use crate::model::{
+    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, Piece, Prescribed, Ramp,
+    RigidBody, RigidShape, Slave,
+};
+
+struct Ctx<'a> {
+    src: &'a SceneSource,
+}
+
+impl Ctx<'_> {
+    fn err(&self, near: &str, message: String, hint: &str) -> SceneError {
+        SceneError::Invalid {
+            origin: self.src.origin.clone(),
+            location: locate(&self.src.text, near),
+            message,
+            hint: hint.to_string(),
+        }
+    }
+}
+
+fn ramp(spec: &RampSpec, end: f64) -> Ramp {
+    match spec {
+        RampSpec::Final(v) => Ramp::linear(*v, end),
+        RampSpec::Path(k) => Ramp {
+            knots: k.iter().map(|p| (p[0], p[1])).collect(),
+        },
+    }
+}
+
+fn comp(c: Component) -> usize {
+    match c {
+        Component::X => 0,
+        Component::Y => 1,
+    }
+}
+
+fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<Vec<usize>, SceneError> {
+    let b = &model.bodies[body];
+    let nodes = match sel {
+        NodeSelection::Named(name) => b.node_sets.get(name).cloned().ok_or_else(|| {
+            let known: Vec<&str> = b.node_sets.keys().map(|s| s.as_str()).collect();
+            cx.err(
+                name,
+                format!("body `{}` has no node set `{name}`", b.name),
+                &format!("known sets: {}", known.join(", ")),
+            )
+        })?,
+        NodeSelection::Where(w) => (b.first_node..b.first_node + b.node_count)
+            .filter(|&n| {
+                let p = model.nodes[n];
+                w.x.is_none_or(|x| (p[0] - x).abs() <= w.tol)
+                    && w.y.is_none_or(|y| (p[1] - y).abs() <= w.tol)
+                    && w.bbox.is_none_or(|bb| {
+                        p[0] >= bb[0][0] - w.tol
+                            && p[0] <= bb[1][0] + w.tol
+                            && p[1] >= bb[0][1] - w.tol
+                            && p[1] <= bb[1][1] + w.tol
+                    })
+            })
+            .collect(),
+    };
+    if nodes.is_empty() {
+        return Err(cx.err(
+            &b.name,
+            format!("the node selection {sel:?} on body `{}` is empty", b.name),
+            "check the coordinates and `tol`",
+        ));
+    }
+    Ok(nodes)
+}
+
+fn body_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
+    model.bodies.iter().position(|b| b.name == name).ok_or_else(|| {
+        let known: Vec<&str> = model.bodies.iter().map(|b| b.name.as_str()).collect();
+        cx.err(
+            name,
+            format!("no body named `{name}`"),
+            &format!("known bodies: {}", known.join(", ")),
+        )
+    })
+}
+
+fn rigid_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
+    model.rigid.iter().position(|b| b.name == name).ok_or_else(|| {
+        let known: Vec<&str> = model.rigid.iter().map(|b| b.name.as_str()).collect();
+        cx.err(
+            name,
+            format!("no rigid body named `{name}`"),
+            &format!("known rigid bodies: {}", known.join(", ")),
+        )
+    })
+}
+
+fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
+    let hint = "give exactly one of `point`, `polyline` or `arc`";
+    match (&r.point, &r.polyline, &r.arc) {
+        (Some(p), None, None) => Ok(RigidShape::Point { at: *p }),
+        (None, Some(pts), None) if pts.len() >= 2 => Ok(RigidShape::Surface {
+            pieces: pts.windows(2).map(|w| Piece::Segment { a: w[0], b: w[1] }).collect(),
+        }),
+        (None, None, Some(a)) if a.radius > 0.0 && a.from_deg != a.to_deg => Ok(RigidShape::Surface {
+            pieces: vec![Piece::Arc {
+                centre: a.centre,
+                radius: a.radius,
+                theta0: a.from_deg.to_radians(),
+                theta1: a.to_deg.to_radians(),
+            }],
+        }),
+        _ => Err(cx.err(
+            &r.name,
+            format!(
+                "rigid body `{}` is not a valid point, polyline (≥ 2 points) or arc",
+                r.name
+            ),
+            hint,
+        )),
+    }
+}
+
+/// Build the model of a checked scene.
+pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError> {
+    let cx = Ctx { src };
+    let end = s.stepping.end;
+    if s.stepping.increments == 0 || end <= 0.0 {
+        return Err(cx.err(
+            "stepping",
+            "stepping needs end > 0 and increments ≥ 1".into(),
+            "fix [stepping]",
+        ));
+    }
+    let mut m = Model {
+        name: s.name.clone(),
+        description: s.description.clone(),
+        nodes: Vec::new(),
+        elements: Vec::new(),
+        bodies: Vec::new(),
+        prescribed: Vec::new(),
+        loads: Vec::new(),
+        rigid: Vec::new(),
+        contacts: Vec::new(),
+        stepping: s.stepping.clone(),
+        newton: s.solver.clone(),
+        monitor: None,
+    };
+    for b in &s.bodies {
+        if m.bodies.iter().any(|o| o.name == b.name) {
+            return Err(cx.err(
+                &b.name,
+                format!("two bodies are named `{}`", b.name),
+                "give each body its own name",
+            ));
+        }
+        let MeshSpec::Rectangle {
+            origin,
+            size,
+            elements,
+            grading,
+        } = b.mesh.clone();
+        if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: mesh needs positive size and ≥ 1 element each way", b.name),
+                "fix [body.mesh]",
+            ));
+        }
+        let mat = &b.material;
+        if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
+                "fix [body.material]",
+            ));
+        }
+        let (lambda, mu) = lame(mat.young, mat.poisson);
+        let material = match mat.model {
+            MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
+            MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
+        };
+        let mesh = RectMesh::new(origin, size, elements, grading);
+        let off = m.nodes.len();
+        let bi = m.bodies.len();
+        m.nodes.extend(mesh.nodes.iter().copied());
+        m.elements.extend(mesh.quads.iter().map(|q| Element {
+            nodes: q.map(|n| n + off),
+            body: bi,
+        }));
+        m.bodies.push(Body {
+            name: b.name.clone(),
+            material,
+            kind: b.element,
+            first_node: off,
+            node_count: mesh.nodes.len(),
+            node_sets: mesh
+                .node_sets
+                .into_iter()
+                .map(|(k, v)| (k, v.into_iter().map(|n| n + off).collect()))
+                .collect(),
+            faces: mesh
+                .faces
+                .into_iter()
+                .map(|(k, v)| (k, v.into_iter().map(|s| s.map(|n| n + off)).collect()))
+                .collect(),
+        });
+    }
+    let mut fixed = vec![false; m.dof_count()];
+    for f in &s.fixes {
+        let bi = body_index(&cx, &m, &f.body)?;
+        for n in select(&cx, &m, bi, &f.nodes)? {
+            for &c in &f.components {
+                let dof = 2 * n + comp(c);
+                if fixed[dof] {
+                    return Err(cx.err(
+                        &f.body,
+                        format!("node {n} component {c:?} of `{}` is prescribed twice", f.body),
+                        "remove the overlap between [[fix]] entries",
+                    ));
+                }
+                fixed[dof] = true;
+                m.prescribed.push(Prescribed {
+                    dof,
+                    ramp: ramp(&f.value, end),
+                });
+            }
+        }
+    }
+    for l in &s.loads {
+        let bi = body_index(&cx, &m, &l.body)?;
+        let nodes = select(&cx, &m, bi, &l.nodes)?;
+        let share = 1.0 / nodes.len() as f64;
+        let mut r = ramp(&l.total, end);
+        r.knots.iter_mut().for_each(|k| k.1 *= share);
+        for n in nodes {
+            m.loads.push(NodalLoad {
+                dof: 2 * n + comp(l.component),
+                ramp: r.clone(),
+            });
+        }
+    }
+    for r in &s.rigid {
+        let shape = rigid_shape(&cx, r)?;
+        let mv = |o: &Option<RampSpec>| o.as_ref().map_or(Ramp::constant(0.0), |x| ramp(x, end));
+        m.rigid.push(RigidBody {
+            name: r.name.clone(),
+            shape,
+            motion: [mv(&r.motion.x), mv(&r.motion.y)],
+        });
+    }
+    let h = max_edge(&m);
+    for c in &s.contacts {
+        let pair = contact_pair(&cx, &m, c, h)?;
+        m.contacts.push(pair);
+    }
+    if let Some(mon) = &s.monitor {
+        let bi = body_index(&cx, &m, &mon.body)?;
+        m.monitor = Some(Monitor {
+            label: mon.label.clone(),
+            nodes: select(&cx, &m, bi, &mon.nodes)?,
+            component: comp(mon.component),
+            sign: mon.sign,
+        });
+    }
+    Ok(m)
+}
+
+fn max_edge(m: &Model) -> f64 {
+    let mut h = 0.0f64;
+    for e in &m.elements {
+        for i in 0..4 {
+            let (a, b) = (m.nodes[e.nodes[i]], m.nodes[e.nodes[(i + 1) % 4]]);
+            h = h.max(((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt());
+        }
+    }
+    h
+}
+
+fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactPair, SceneError> {
+    let bad = |msg: &str| {
+        cx.err(
+            &c.name,
+            format!("contact `{}`: {msg}", c.name),
+            "slave = { body, nodes } or { rigid }; master = { body, face } or { rigid }",
+        )
+    };
+    let slaves = match (&c.slave.body, &c.slave.nodes, &c.slave.rigid) {
+        (Some(b), Some(sel), None) => {
+            let bi = body_index(cx, m, b)?;
+            select(cx, m, bi, sel)?.into_iter().map(Slave::Node).collect()
+        }
+        (None, None, Some(r)) => {
+            let ri = rigid_index(cx, m, r)?;
+            if !matches!(m.rigid[ri].shape, RigidShape::Point { .. }) {
+                return Err(bad("a rigid slave must be a `point`"));
+            }
+            vec![Slave::RigidPoint(ri)]
+        }
+        _ => return Err(bad("invalid slave")),
+    };
+    let master = match (&c.master.body, &c.master.face, &c.master.rigid) {
+        (Some(b), Some(face), None) => {
+            let bi = body_index(cx, m, b)?;
+            let segments = m.bodies[bi].faces.get(face).cloned().ok_or_else(|| {
+                cx.err(
+                    face,
+                    format!("body `{b}` has no face `{face}`"),
+                    "faces are bottom, right, top, left",
+                )
+            })?;
+            let (prev, next) = chain_neighbours(&segments);
+            Master::Face {
+                body: bi,
+                segments,
+                prev,
+                next,
+            }
+        }
+        (None, None, Some(r)) => {
+            let ri = rigid_index(cx, m, r)?;
+            let RigidShape::Surface { pieces } = &m.rigid[ri].shape else {
+                return Err(bad("a rigid master must be a polyline or an arc"));
+            };
+            let n = pieces.len();
+            let prev = (0..n).map(|k| k.checked_sub(1)).collect();
+            let next = (0..n).map(|k| if k + 1 < n { Some(k + 1) } else { None }).collect();
+            Master::Rigid { body: ri, prev, next }
+        }
+        _ => return Err(bad("invalid master")),
+    };
+    if c.eps_n <= 0.0 || c.eps_t < 0.0 || c.mu < 0.0 || (c.mu > 0.0 && c.eps_t <= 0.0) {
+        return Err(bad("need eps_n > 0, mu ≥ 0, and eps_t > 0 when mu > 0"));
+    }
+    Ok(ContactPair {
+        name: c.name.clone(),
+        slaves,
+        master,
+        law: ContactLaw {
+            eps_n: c.eps_n,
+            eps_t: c.eps_t,
+            mu: c.mu,
+        },
+        transfer: c.transfer,
+        search_radius: c.search_radius.unwrap_or(2.0 * h),
+    })
+}

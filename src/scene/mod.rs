@@ -1,0 +1,139 @@
+//! Scenes: TOML files (or built-ins) → checked [`SceneFile`] → [`crate::model::Model`].
+//!
+//! Errors name the file, the line and column, and how to fix it; `--set key.path=value`
+//! overrides are applied to the parsed TOML before it is checked.
+
+mod build;
+pub mod builtin;
+mod overrides;
+pub mod types;
+
+pub use build::build_model;
+pub use overrides::apply_override;
+pub use types::SceneFile;
+
+use std::path::Path;
+
+/// A scene that could not be read, parsed or resolved.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{origin}: cannot read: {source}\n  hint: give a scene file path or a built-in name (`contrail scenes` lists them)")]
+    Read { origin: String, source: std::io::Error },
+    #[error("{origin}:{line}:{column}: {message}\n  hint: {hint}")]
+    Syntax {
+        origin: String,
+        line: usize,
+        column: usize,
+        message: String,
+        hint: String,
+    },
+    #[error("{origin}: --set {set}: {message}\n  hint: use --set table.key=value, e.g. --set stepping.increments=200 or --set contact.mu=0.1")]
+    Override {
+        origin: String,
+        set: String,
+        message: String,
+    },
+    #[error("{origin}{location}: {message}\n  hint: {hint}")]
+    Invalid {
+        origin: String,
+        location: String,
+        message: String,
+        hint: String,
+    },
+}
+
+/// A scene text with where it came from.
+#[derive(Debug, Clone)]
+pub struct SceneSource {
+    /// `builtin:NAME` or the file path.
+    pub origin: String,
+    pub text: String,
+}
+
+impl SceneSource {
+    /// A built-in name or a path.
+    pub fn resolve(name_or_path: &str) -> Result<Self, SceneError> {
+        if let Some(b) = builtin::find(name_or_path) {
+            return Ok(SceneSource {
+                origin: format!("builtin:{}", b.name),
+                text: b.text.to_string(),
+            });
+        }
+        let text = std::fs::read_to_string(Path::new(name_or_path)).map_err(|source| SceneError::Read {
+            origin: name_or_path.to_string(),
+            source,
+        })?;
+        Ok(SceneSource {
+            origin: name_or_path.to_string(),
+            text,
+        })
+    }
+}
+
+/// Line and column (1-based) of a byte offset.
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+fn hint_for(message: &str) -> String {
+    if message.contains("unknown field") {
+        "remove or correct the key; the accepted keys are listed above (schemas/scene.schema.json documents them)"
+            .into()
+    } else if message.contains("missing field") {
+        "add the missing key".into()
+    } else if message.contains("did not match any variant") {
+        "a node selection is a set name (\"left\") or a table like { x = 0.0 }; a value is a number or [[t, v], ...]"
+            .into()
+    } else {
+        "check the TOML syntax and the value's type".into()
+    }
+}
+
+/// Parse and check a scene text, then apply `--set` overrides and check again.
+pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneError> {
+    let first: SceneFile = toml::from_str(&source.text).map_err(|e| {
+        let (line, column) = e.span().map_or((0, 0), |s| line_col(&source.text, s.start));
+        let message = e.message().to_string();
+        SceneError::Syntax {
+            origin: source.origin.clone(),
+            line,
+            column,
+            hint: hint_for(&message),
+            message,
+        }
+    })?;
+    if sets.is_empty() {
+        return Ok(first);
+    }
+    let mut table: toml::Table = toml::from_str(&source.text).expect("parsed above");
+    for set in sets {
+        apply_override(&mut table, set).map_err(|message| SceneError::Override {
+            origin: source.origin.clone(),
+            set: set.clone(),
+            message,
+        })?;
+    }
+    toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| SceneError::Override {
+            origin: source.origin.clone(),
+            set: sets.join(" --set "),
+            message: e.message().to_string(),
+        })
+}
+
+/// Location `:line:col` of the first quoted occurrence of `needle` in the text (for semantic
+/// errors about names), or an empty string.
+pub(crate) fn locate(text: &str, needle: &str) -> String {
+    let quoted = format!("\"{needle}\"");
+    text.find(&quoted).map_or(String::new(), |off| {
+        let (l, c) = line_col(text, off);
+        format!(":{l}:{c}")
+    })
+}
+
+#[cfg(test)]
+mod tests;

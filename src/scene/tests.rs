@@ -1,0 +1,64 @@
+use super::*;
+
+#[test]
+fn every_builtin_parses_and_builds() {
+    for b in builtin::BUILTINS {
+        let src = SceneSource::resolve(b.name).unwrap();
+        let scene = parse(&src, &[]).unwrap_or_else(|e| panic!("{}: {e}", b.name));
+        assert_eq!(scene.name, b.name);
+        let model = build_model(&src, &scene).unwrap_or_else(|e| panic!("{}: {e}", b.name));
+        assert!(!model.elements.is_empty());
+        assert!(!builtin::description(b).is_empty());
+    }
+}
+
+#[test]
+fn typo_in_a_key_reports_file_line_and_column() {
+    let text = "name = \"x\"\n[stepping]\nincremnts = 4\n";
+    let src = SceneSource {
+        origin: "typo.toml".into(),
+        text: text.into(),
+    };
+    let e = parse(&src, &[]).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.starts_with("typo.toml:3:1:"), "{msg}");
+    assert!(msg.contains("incremnts") && msg.contains("hint"), "{msg}");
+}
+
+#[test]
+fn unknown_names_point_at_their_line() {
+    let text = "name = \"x\"\n[[fix]]\nbody = \"nobody\"\nnodes = \"left\"\ncomponents = [\"x\"]\n";
+    let src = SceneSource {
+        origin: "names.toml".into(),
+        text: text.into(),
+    };
+    let scene = parse(&src, &[]).unwrap();
+    let msg = build_model(&src, &scene).unwrap_err().to_string();
+    assert!(msg.starts_with("names.toml:3:8: no body named `nobody`"), "{msg}");
+}
+
+#[test]
+fn overrides_are_checked_too() {
+    let src = SceneSource::resolve("strip-channel").unwrap();
+    let s = parse(
+        &src,
+        &["contact.mu=0.1".into(), "contact.transfer=straightforward".into()],
+    )
+    .unwrap();
+    assert!(s.contacts.iter().all(|c| c.mu == 0.1));
+    let e = parse(&src, &["contact.transfer=sideways".into()])
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--set contact.transfer=sideways") && e.contains("sideways"),
+        "{e}"
+    );
+    let e = parse(&src, &["stepping.incremnts=3".into()]).unwrap_err().to_string();
+    assert!(e.contains("incremnts"), "{e}");
+}
+
+#[test]
+fn missing_file_is_a_clear_error() {
+    let e = SceneSource::resolve("/no/such/scene.toml").unwrap_err().to_string();
+    assert!(e.starts_with("/no/such/scene.toml: cannot read"), "{e}");
+}

@@ -1,0 +1,246 @@
+//! The scene file format (TOML). Every table rejects unknown keys; the JSON Schema in
+//! `schemas/scene.schema.json` is generated from these types.
+
+use crate::contact::transfer::TransferKind;
+use crate::element::quad::ElementKind;
+use crate::solver::settings::{NewtonSettings, Stepping};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A whole scene.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<BodySpec>,
+    /// Prescribed displacements (Dirichlet conditions).
+    #[serde(default, rename = "fix")]
+    pub fixes: Vec<FixSpec>,
+    /// Dead nodal forces.
+    #[serde(default, rename = "load")]
+    pub loads: Vec<LoadSpec>,
+    #[serde(default, rename = "rigid")]
+    pub rigid: Vec<RigidSpec>,
+    #[serde(default, rename = "contact")]
+    pub contacts: Vec<ContactSpec>,
+    #[serde(default)]
+    pub stepping: Stepping,
+    #[serde(default)]
+    pub solver: NewtonSettings,
+    pub monitor: Option<MonitorSpec>,
+}
+
+/// A deformable body meshed with quadrilaterals.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    pub name: String,
+    pub mesh: MeshSpec,
+    pub material: MaterialSpec,
+    #[serde(default = "default_element")]
+    pub element: ElementKind,
+}
+
+fn default_element() -> ElementKind {
+    ElementKind::Q4Eas
+}
+
+/// Mesh generators.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// Structured mesh of the rectangle `origin .. origin + size`.
+    Rectangle {
+        origin: [f64; 2],
+        size: [f64; 2],
+        /// Elements along x and y.
+        elements: [usize; 2],
+        /// Ratio of the last to the first element size along x and y (default 1 = uniform).
+        #[serde(default = "unit_grading")]
+        grading: [f64; 2],
+    },
+}
+
+fn unit_grading() -> [f64; 2] {
+    [1.0, 1.0]
+}
+
+/// Material model and its elastic constants.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    pub model: MaterialModel,
+    pub young: f64,
+    pub poisson: f64,
+}
+
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "kebab-case")]
+pub enum MaterialModel {
+    SaintVenantKirchhoff,
+    NeoHookean,
+}
+
+/// A set of nodes of a body: a named set (`left`, `right`, `bottom`, `top`, `all`,
+/// `bottom-left`, …) or the nodes on a coordinate line or in a box (reference coordinates).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum NodeSelection {
+    Named(String),
+    Where(WhereSpec),
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WhereSpec {
+    /// Nodes with this x (within `tol`).
+    pub x: Option<f64>,
+    /// Nodes with this y (within `tol`).
+    pub y: Option<f64>,
+    /// Nodes inside `[[x0, y0], [x1, y1]]`.
+    #[serde(rename = "box")]
+    pub bbox: Option<[[f64; 2]; 2]>,
+    #[serde(default = "default_tol")]
+    pub tol: f64,
+}
+
+fn default_tol() -> f64 {
+    1e-9
+}
+
+/// A prescribed history: a final value reached linearly at `t = end`, or `(t, value)` knots.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum RampSpec {
+    Final(f64),
+    Path(Vec<[f64; 2]>),
+}
+
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Component {
+    X,
+    Y,
+}
+
+/// Prescribed displacement of some components of a node set.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FixSpec {
+    pub body: String,
+    pub nodes: NodeSelection,
+    pub components: Vec<Component>,
+    /// Displacement history (default 0: fixed).
+    #[serde(default = "zero_ramp")]
+    pub value: RampSpec,
+}
+
+fn zero_ramp() -> RampSpec {
+    RampSpec::Final(0.0)
+}
+
+/// A dead force on a node set.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    pub body: String,
+    pub nodes: NodeSelection,
+    pub component: Component,
+    /// Total force (split equally over the nodes) as a history.
+    pub total: RampSpec,
+}
+
+/// A rigid body: a point, or a surface made of segments and arcs.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RigidSpec {
+    pub name: String,
+    /// A rigid point (e.g. a sharp corner used as a contact slave).
+    pub point: Option<[f64; 2]>,
+    /// A polyline surface, listed with the rigid body on the left (outward normal on the right).
+    pub polyline: Option<Vec<[f64; 2]>>,
+    /// A circular arc; counter-clockwise (`from_deg < to_deg`) is the outside of a disc.
+    pub arc: Option<ArcSpec>,
+    /// Prescribed translation histories.
+    #[serde(default, rename = "move")]
+    pub motion: MotionSpec,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ArcSpec {
+    pub centre: [f64; 2],
+    pub radius: f64,
+    pub from_deg: f64,
+    pub to_deg: f64,
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MotionSpec {
+    pub x: Option<RampSpec>,
+    pub y: Option<RampSpec>,
+}
+
+/// The slave side of a contact pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SlaveSpec {
+    /// Nodes of a deformable body …
+    pub body: Option<String>,
+    pub nodes: Option<NodeSelection>,
+    /// … or a rigid point.
+    pub rigid: Option<String>,
+}
+
+/// The master side of a contact pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MasterSpec {
+    /// A face (`bottom`, `right`, `top`, `left`) of a deformable body …
+    pub body: Option<String>,
+    pub face: Option<String>,
+    /// … or a rigid surface.
+    pub rigid: Option<String>,
+}
+
+/// A node-to-segment contact pair.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    pub name: String,
+    pub slave: SlaveSpec,
+    pub master: MasterSpec,
+    pub eps_n: f64,
+    #[serde(default)]
+    pub eps_t: f64,
+    #[serde(default)]
+    pub mu: f64,
+    #[serde(default = "default_transfer")]
+    pub transfer: TransferKind,
+    /// Search radius (default: twice the largest element edge of the model).
+    pub search_radius: Option<f64>,
+}
+
+fn default_transfer() -> TransferKind {
+    TransferKind::Continuous
+}
+
+/// Which load–displacement pair to report.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MonitorSpec {
+    pub label: String,
+    pub body: String,
+    pub nodes: NodeSelection,
+    pub component: Component,
+    #[serde(default = "unit")]
+    pub sign: f64,
+}
+
+fn unit() -> f64 {
+    1.0
+}

@@ -1,0 +1,8 @@
+//! Newton–Raphson with load stepping, automatic cut-backs and step growth.
+
+pub mod newton;
+pub mod run;
+pub mod settings;
+pub mod state;
+
+pub use run::{run, RunSummary, SolveError};

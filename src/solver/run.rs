@@ -1,0 +1,252 @@
+//! Load stepping over the pseudo-time: increments, cut-backs on failure, growth back toward
+//! the nominal step, and the reports to the observer.
+
+use super::newton::solve_increment;
+use super::state::TrialState;
+use crate::assembly::Assembler;
+use crate::contact::system::Config;
+use crate::model::Model;
+use crate::record::{
+    IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
+};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// A run that could not finish. The observer has already been told (`finish` was called).
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    #[error(
+        "increment {increment} failed at t = {t:.6} (step {dt:.3e}) after {cutbacks} cut-backs: {reason}; \
+         last residuals {residuals:?}"
+    )]
+    StepFailed {
+        increment: usize,
+        t: f64,
+        dt: f64,
+        cutbacks: usize,
+        reason: String,
+        residuals: Vec<f64>,
+    },
+    #[error("interrupted during increment {increment} (last converged t = {t:.6})")]
+    Interrupted { increment: usize, t: f64 },
+    #[error("recording failed: {0}")]
+    Observer(#[from] ObserverError),
+}
+
+/// Figures of a completed run.
+#[derive(Debug, Clone, Default)]
+pub struct RunSummary {
+    pub increments: usize,
+    pub newton_iterations: usize,
+    pub cutbacks: usize,
+    pub crossings: usize,
+    pub wall_time_s: f64,
+    pub t: f64,
+    pub monitor: Option<MonitorRecord>,
+    pub symbolic_factorizations: usize,
+}
+
+fn monitor(model: &Model, asm: &Assembler, u: &[f64], t: f64) -> Option<MonitorRecord> {
+    let m = model.monitor.as_ref()?;
+    let mut disp = 0.0;
+    let mut force = 0.0;
+    for &n in &m.nodes {
+        let d = 2 * n + m.component;
+        disp += u[d];
+        force += if asm.dofs.eq[d].is_none() {
+            asm.r_full[d]
+        } else {
+            model.loads.iter().filter(|l| l.dof == d).map(|l| l.ramp.at(t)).sum()
+        };
+    }
+    Some(MonitorRecord {
+        label: m.label.clone(),
+        displacement: m.sign * disp / m.nodes.len().max(1) as f64,
+        force: m.sign * force,
+    })
+}
+
+fn log(
+    obs: &mut dyn Observer,
+    level: LogLevel,
+    increment: usize,
+    t: f64,
+    message: String,
+) -> Result<(), ObserverError> {
+    obs.log(&LogRecord {
+        level,
+        increment,
+        t,
+        message,
+    })
+}
+
+/// Run the model's load stepping to `stepping.end`, reporting to `obs`. `stop` is polled
+/// between Newton iterations (Ctrl-C).
+pub fn run(model: &Model, info: &RunInfo, obs: &mut dyn Observer, stop: &AtomicBool) -> Result<RunSummary, SolveError> {
+    let started = Instant::now();
+    obs.start(model, info)?;
+    let result = drive(model, obs, stop, started);
+    let outcome = match &result {
+        Ok(s) => Outcome::Completed {
+            increments: s.increments,
+            t: s.t,
+        },
+        Err(SolveError::StepFailed {
+            increment,
+            t,
+            reason,
+            residuals,
+            ..
+        }) => Outcome::Failed {
+            increment: *increment,
+            t: *t,
+            reason: reason.clone(),
+            residuals: residuals.clone(),
+        },
+        Err(SolveError::Interrupted { increment, t }) => Outcome::Interrupted {
+            increment: *increment,
+            t: *t,
+        },
+        Err(SolveError::Observer(e)) => Outcome::Failed {
+            increment: 0,
+            t: 0.0,
+            reason: format!("recording failed: {e}"),
+            residuals: vec![],
+        },
+    };
+    if let Err(e) = &result {
+        let _ = log(obs, LogLevel::Error, 0, 0.0, e.to_string());
+    }
+    let fin = obs.finish(&outcome);
+    let summary = result?;
+    fin?;
+    Ok(summary)
+}
+
+fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Instant) -> Result<RunSummary, SolveError> {
+    let st = &model.stepping;
+    let nominal = st.end / st.increments.max(1) as f64;
+    let mut asm = Assembler::new(model);
+    let mut committed = TrialState::new(model);
+    let mut summary = RunSummary::default();
+    let mut t = 0.0;
+    let mut dt = nominal;
+    let mut streak = 0;
+    let mut fref = 0.0f64;
+    let mut increment = 0;
+    while t < st.end * (1.0 - 1e-12) {
+        increment += 1;
+        let t_inc = Instant::now();
+        let mut attempt = 0;
+        let (state, conv, t_new) = loop {
+            let mut t_new = (t + dt).min(st.end);
+            if st.end - t_new < 1e-6 * dt {
+                t_new = st.end;
+            }
+            let mut trial = committed.clone();
+            trial.contact.reset_current();
+            let mut obs_err = None;
+            let mut residuals = Vec::new();
+            let mut interrupted = false;
+            let res = solve_increment(
+                model,
+                &model.newton,
+                &mut asm,
+                &mut trial,
+                t_new,
+                fref,
+                &mut |rec| {
+                    if let Err(e) = obs.iteration(&rec) {
+                        obs_err = Some(e);
+                    }
+                    interrupted = stop.load(Ordering::Relaxed);
+                    obs_err.is_none() && !interrupted
+                },
+                (increment, attempt),
+                &mut residuals,
+            );
+            if let Some(e) = obs_err {
+                return Err(e.into());
+            }
+            if interrupted || stop.load(Ordering::Relaxed) {
+                return Err(SolveError::Interrupted { increment, t });
+            }
+            match res {
+                Ok(c) => break (trial, c, t_new),
+                Err(f) => {
+                    if attempt >= st.max_cutbacks {
+                        return Err(SolveError::StepFailed {
+                            increment,
+                            t: t_new,
+                            dt,
+                            cutbacks: attempt,
+                            reason: f.to_string(),
+                            residuals,
+                        });
+                    }
+                    log(
+                        obs,
+                        LogLevel::Warning,
+                        increment,
+                        t_new,
+                        format!("increment {increment} at t = {t_new:.6}: {f}; cutting the step {dt:.3e} in half"),
+                    )?;
+                    dt *= 0.5;
+                    attempt += 1;
+                    summary.cutbacks += 1;
+                    streak = 0;
+                }
+            }
+        };
+        committed = state;
+        let t_prev = t;
+        t = t_new;
+        fref = fref.max(conv.reference);
+        summary.newton_iterations += conv.iterations;
+        let cfg = Config {
+            model,
+            u: &committed.u,
+            t,
+        };
+        let crossings = committed.contact.commit(&cfg);
+        summary.crossings += crossings.len();
+        let points = committed.contact.records(&cfg);
+        let mut reaction_total = [0.0; 2];
+        for &d in &asm.dofs.prescribed {
+            reaction_total[d % 2] += asm.r_full[d];
+        }
+        let rec = IncrementRecord {
+            increment,
+            t,
+            dt: t_new - t_prev,
+            iterations: conv.iterations,
+            cutbacks: attempt,
+            converged: true,
+            wall_time_s: t_inc.elapsed().as_secs_f64(),
+            residuals: conv.residuals,
+            monitor: monitor(model, &asm, &committed.u, t),
+            reaction_total,
+        };
+        summary.monitor = rec.monitor.clone();
+        obs.increment(
+            &rec,
+            &StepView {
+                model,
+                u: &committed.u,
+                contact: &points,
+                crossings: &crossings,
+            },
+        )?;
+        summary.increments = increment;
+        streak += 1;
+        if streak >= st.grow_after && dt < nominal {
+            dt = (dt * st.growth).min(nominal);
+            streak = 0;
+        }
+    }
+    summary.t = t;
+    summary.wall_time_s = started.elapsed().as_secs_f64();
+    summary.symbolic_factorizations = asm.matrix.symbolic_factorizations;
+    Ok(summary)
+}

@@ -1,0 +1,64 @@
+//! Load-stepping and Newton settings (also the `[stepping]` and `[solver]` tables of a scene).
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Load stepping over the pseudo-time `t ∈ [0, end]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Stepping {
+    /// Final pseudo-time.
+    pub end: f64,
+    /// Number of nominal increments (nominal step `end / increments`).
+    pub increments: usize,
+    /// How many times one increment may be halved before the run fails.
+    pub max_cutbacks: usize,
+    /// Step growth factor after `grow_after` consecutive converged increments (back toward the
+    /// nominal step, never beyond it).
+    pub growth: f64,
+    pub grow_after: usize,
+}
+
+impl Default for Stepping {
+    fn default() -> Self {
+        Stepping {
+            end: 1.0,
+            increments: 10,
+            max_cutbacks: 10,
+            growth: 2.0,
+            grow_after: 2,
+        }
+    }
+}
+
+/// Newton–Raphson settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct NewtonSettings {
+    pub max_iterations: usize,
+    /// Converged when `‖R‖ ≤ residual_tol · F_ref` (F_ref: norm of the internal forces) …
+    pub residual_tol: f64,
+    /// … or `‖R‖ ≤ residual_abs`, …
+    pub residual_abs: f64,
+    /// … and the energy norm `|Δu·R|` of the last correction is `≤ energy_tol` times that of
+    /// the first iteration of the increment.
+    pub energy_tol: f64,
+    /// Backtracking line search on the residual norm.
+    pub line_search: bool,
+    /// The iteration is declared divergent when `‖R‖` exceeds this multiple of
+    /// `max(‖R₀‖, F_ref)`.
+    pub divergence_factor: f64,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            max_iterations: 25,
+            residual_tol: 1e-9,
+            residual_abs: 1e-10,
+            energy_tol: 1e-16,
+            line_search: false,
+            divergence_factor: 1e8,
+        }
+    }
+}

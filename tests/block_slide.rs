@@ -1,0 +1,78 @@
+//! Block on a rigid plane, pressed then dragged: penalty stick and Coulomb sliding.
+//!
+//! ```text
+//!        u_y(t), u_x(t) prescribed on the top
+//!      +-----------+
+//!      |   block   |   E = 1000, ν = 0.3, 1 × 0.5, 4 × 2 Neo-Hookean EAS elements
+//!      +-----------+
+//!  ====================  rigid plane y = 0: ε_N = 1e4, ε_T = 1e3, μ = 0.3
+//! ```
+//! t ∈ [0, 1]: press by 0.005; t ∈ [1, 3]: drag by 0.05.
+//! References: in stick, the friction force on each slave node is −ε_T times its tangential
+//! displacement since it closed (rigid flat master: a11 is constant), to 1e-8 relative; in
+//! sliding, the drag force on the top equals μ times the normal force, to 1e-8 relative.
+
+mod common;
+
+use contrail::contact::law::ContactState;
+
+const EPS_T: f64 = 1.0e3;
+const MU: f64 = 0.3;
+
+#[test]
+fn block_slide_stick_force_is_penalty_times_slip() {
+    let m = common::scene("block-slide", &[]);
+    let (_, mem) = common::solve_ok(&m);
+    let n_slaves = mem.contact[0].len();
+    let mut first_x = vec![None; n_slaves];
+    let mut checked = 0;
+    for points in &mem.contact {
+        for (i, p) in points.iter().enumerate() {
+            if p.state == ContactState::Open {
+                first_x[i] = None;
+                continue;
+            }
+            let Some(x0) = first_x[i] else {
+                first_x[i] = Some(p.position[0]); // anchor: end of the closing increment
+                continue;
+            };
+            if p.state == ContactState::Stick {
+                let fx = p.traction * p.tangent[0];
+                let expect = -EPS_T * (p.position[0] - x0);
+                assert!(
+                    (fx - expect).abs() <= 1e-8 * expect.abs().max(1e-6),
+                    "node {}: friction {fx:e} vs −ε_T·slip {expect:e}",
+                    p.slave_label
+                );
+                checked += 1;
+            }
+        }
+    }
+    println!("checked {checked} stick states");
+    assert!(checked > 10);
+}
+
+#[test]
+fn block_slide_sliding_force_is_mu_times_normal_force() {
+    let m = common::scene("block-slide", &[]);
+    let (_, mem) = common::solve_ok(&m);
+    let mut sliding = 0;
+    for (inc, points) in mem.increments.iter().zip(&mem.contact) {
+        if points.iter().all(|p| p.state == ContactState::Slip) {
+            let [rx, ry] = inc.reaction_total;
+            let ratio = rx.abs() / ry.abs();
+            assert!((ratio / MU - 1.0).abs() < 1e-8, "t = {}: |R_x|/|R_y| = {ratio}", inc.t);
+            let n: f64 = points.iter().map(|p| p.normal_force).sum();
+            let t: f64 = points.iter().map(|p| p.traction.abs()).sum();
+            assert!((t / (MU * n) - 1.0).abs() < 1e-12);
+            sliding += 1;
+        }
+    }
+    println!("{sliding} fully sliding increments");
+    assert!(sliding >= 10, "the block must slide");
+    // it stuck first
+    assert!(mem
+        .contact
+        .iter()
+        .any(|ps| ps.iter().any(|p| p.state == ContactState::Stick)));
+}

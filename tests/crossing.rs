@@ -1,0 +1,98 @@
+//! A rigid point pressed into a face of unequal segments and dragged across their
+//! boundaries in stick (scene `crossing`): the unit behaviour of the transfer schemes.
+//!
+//! ```text
+//!        P → → → → → → → → →        rigid point, pressed 0.002, dragged 1.6 in x
+//!   +----+------+---------+------------+   top face: 4 segments, lengths grow ×3
+//!   |    block 2 × 0.5, E = 1e4        |   bottom fixed
+//!   +----------------------------------+
+//! ```
+//! ε_N = 1e4, ε_T = 1e3, μ = 100 (stick throughout).
+//! References (notes, "History transfer"): with `continuous` and `path-length` the trial
+//! traction is continuous across a boundary — |after − before| < 1e-6 ε_T, where "before" is
+//! the same-segment trial on A's extension in the same configuration; with `straightforward`
+//! the trial jumps by the amount the notes predict,
+//! `t_after − t_before = ε_T [√a11^A (ξ_ext − ξ_A) − √a11^B (ξ_B − ξ_A)] + t^(n) (√a11^A/√a11^B − 1)`
+//! (about `ε_T ℓ_B`, "2 ε_T" in ξ units), asserted to 1 % (segment lengths taken from the
+//! reference mesh; strains are ~1e-3). Newton's observed order at crossing increments ≥ 1.8
+//! for the consistent schemes.
+
+mod common;
+
+use contrail::solver::newton::observed_orders;
+
+const EPS_T: f64 = 1.0e3;
+
+fn run(scheme: &str) -> (contrail::model::Model, contrail::record::Memory) {
+    let m = common::scene("crossing", &[&format!("contact.transfer={scheme}")]);
+    let (s, mem) = common::solve_ok(&m);
+    println!("{scheme}: {} increments, {} crossings", s.increments, s.crossings);
+    (m, mem)
+}
+
+fn seg_len(m: &contrail::model::Model, seg: usize) -> f64 {
+    let contrail::model::Master::Face { segments, .. } = &m.contacts[0].master else {
+        panic!()
+    };
+    let [a, b] = segments[seg];
+    let (p, q) = (m.nodes[a], m.nodes[b]);
+    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)).sqrt()
+}
+
+#[test]
+fn crossing_continuous_and_path_length_are_continuous() {
+    for scheme in ["continuous", "path-length"] {
+        let (_, mem) = run(scheme);
+        assert_eq!(mem.crossings.len(), 3, "{scheme}: three boundaries are crossed");
+        for (inc, c) in &mem.crossings {
+            let jump = (c.trial_after - c.trial_before).abs();
+            println!(
+                "{scheme}: increment {inc}: {} -> {}, jump {:.3e} ε_T",
+                c.from_segment,
+                c.to_segment,
+                jump / EPS_T
+            );
+            assert!(jump < 1e-6 * EPS_T, "{scheme}: jump {jump:e}");
+            assert!(
+                (c.returned_after - c.trial_after).abs() < 1e-12 * EPS_T,
+                "stays in stick"
+            );
+        }
+        // consistent tangent at the crossing increments
+        for (inc, _) in &mem.crossings {
+            let r = &mem.increments[inc - 1].residuals;
+            let orders = observed_orders(r, 1e-9 * r[0]);
+            println!("{scheme}: crossing increment {inc}: residuals {r:?}, orders {orders:.2?}");
+            if let Some(p) = orders.last() {
+                assert!(*p >= 1.8, "{scheme}: order {p} at crossing increment {inc}");
+            }
+        }
+    }
+}
+
+#[test]
+fn crossing_straightforward_jumps_as_predicted() {
+    let (m, mem) = run("straightforward");
+    assert!(!mem.crossings.is_empty());
+    for (inc, c) in &mem.crossings {
+        let prev = &mem.contact[inc - 2][c.slave];
+        let t_n = prev.traction;
+        let (la, lb) = (seg_len(&m, c.from_segment), seg_len(&m, c.to_segment));
+        let (sa, sb) = (la / 2.0, lb / 2.0);
+        let predicted =
+            EPS_T * (sa * (c.xi_from_extended - c.xi_from) - sb * (c.xi_to - c.xi_from)) + t_n * (sa / sb - 1.0);
+        let jump = c.trial_after - c.trial_before;
+        println!(
+            "straightforward: increment {inc}: {} -> {} (ℓ_B = {lb:.3}), jump {:.4} ε_T, predicted {:.4} ε_T",
+            c.from_segment,
+            c.to_segment,
+            jump / EPS_T,
+            predicted / EPS_T
+        );
+        assert!(
+            (jump - predicted).abs() < 0.01 * predicted.abs(),
+            "jump {jump} vs predicted {predicted}"
+        );
+        assert!(jump.abs() > 0.5 * EPS_T * lb, "the jump is of the order ε_T ℓ_B");
+    }
+}
