@@ -29,7 +29,8 @@ fn tip_deflection(element: &str) -> f64 {
     let m = common::scene_text(&text);
     let (_, mem) = common::solve_ok(&m);
     let right = &m.bodies[0].node_sets["right"];
-    right.iter().map(|&n| mem.final_u[2 * n + 1]).sum::<f64>() / 2.0
+    // tension on top, compression below: the strip bends downwards
+    -right.iter().map(|&n| mem.final_u[2 * n + 1]).sum::<f64>() / 2.0
 }
 
 #[test]

@@ -34,7 +34,7 @@ fn fd_check(kind: ElementKind, m: &Material, u: [[f64; 2]; 4]) {
         for i in 0..8 {
             let fd = (rp[i] - rm[i]) / (2.0 * h);
             assert!(
-                (fd - k[8 * i + j]).abs() < 1e-6 * kmax,
+                (fd - k[8 * i + j]).abs() < 1e-8 * kmax,
                 "{kind:?} {m:?}: K[{i},{j}] = {} vs FD {fd}",
                 k[8 * i + j]
             );
@@ -137,3 +137,4 @@ proptest! {
         }
     }
 }
+
