@@ -1,3 +1,6 @@
 //! Post-processing of results (summaries, plots).
 
+pub mod diff;
+pub mod inspect;
 pub mod plot;
+pub mod recording;

@@ -1,8 +1,11 @@
 //! Command-line verbs, one file each.
 
 mod check;
+mod diff;
+mod inspect;
 mod plot;
 mod progress;
+mod replay;
 mod run;
 mod scenes;
 
@@ -29,6 +32,12 @@ pub enum Command {
     Plot(plot::PlotArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Rebuild the rerun stream of a run from its MCAP recording alone.
+    Replay(replay::ReplayArgs),
+    /// Summarise an MCAP recording: scene, scheme, increments, how the run ended, crossings.
+    Inspect(inspect::InspectArgs),
+    /// Compare two MCAP recordings of one scene (exit 0 within --tol, 1 beyond, 2 bad input).
+    Diff(diff::DiffArgs),
 }
 
 /// Input the user must fix (exit code 2).
@@ -60,6 +69,9 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Run(a) => run::run(a),
         Command::Check(a) => check::check(a),
         Command::Plot(a) => plot::plot(a),
+        Command::Replay(a) => replay::replay(a),
+        Command::Inspect(a) => inspect::inspect(a),
+        Command::Diff(a) => diff::diff(a),
         Command::Schema => {
             println!(
                 "{}",

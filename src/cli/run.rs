@@ -2,6 +2,8 @@ use super::progress::Progress;
 use super::{BadInput, RunFailed};
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
+use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::{Fanout, Observer};
 use contrail::solver::{run as solve, SolveError};
 use std::io::{BufWriter, IsTerminal};
@@ -14,9 +16,15 @@ use std::sync::Arc;
 pub struct RunArgs {
     /// Built-in scene name or path to a scene TOML file.
     pub scene: String,
-    /// Write the run to FILE: `.csv` (load–displacement history) or `.jsonl` (every record).
+    /// Write the run to FILE: `.csv` (load–displacement history), `.jsonl` (every record) or
+    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks).
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
+    /// In an `.mcap` recording, write node positions every N-th increment (and the last).
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    pub positions_every: u64,
+    #[command(flatten)]
+    pub rerun: super::replay::RerunArgs,
     /// Override a scene value, e.g. --set contact.mu=0.1 (repeatable).
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub sets: Vec<String>,
@@ -49,8 +57,22 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         match path.extension().and_then(|e| e.to_str()) {
             Some("csv") => sinks.push(Box::new(CsvSink::new(open(path)?, &name))),
             Some("jsonl") => sinks.push(Box::new(JsonlSink::new(open(path)?, &name))),
-            _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv or .jsonl")).into()),
+            Some("mcap") => {
+                let opts = McapOptions {
+                    positions_every: a.positions_every as usize,
+                    ..McapOptions::default()
+                };
+                sinks.push(Box::new(
+                    McapSink::new(open(path)?, &name, opts).map_err(|e| BadInput(e.to_string()))?,
+                ));
+            }
+            _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
         }
+    }
+    let targets = a.rerun.targets();
+    if targets.any() {
+        let stream = rerun_sink::open(&targets, &model.name).map_err(|e| BadInput(e.to_string()))?;
+        sinks.push(Box::new(RerunSink::new(stream, "rerun")));
     }
     if !a.quiet && std::io::stdout().is_terminal() {
         sinks.push(Box::new(Progress::new(model.stepping.end)));
@@ -79,6 +101,9 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
                 );
             }
             if let Some(p) = &a.out {
+                println!("written      {}", p.display());
+            }
+            if let Some(p) = &a.rerun.rerun_save {
                 println!("written      {}", p.display());
             }
             Ok(ExitCode::SUCCESS)

@@ -3,13 +3,19 @@
 
 pub mod csv;
 pub mod jsonl;
+pub mod mcap_sink;
+pub mod messages;
 mod observer;
+pub mod real;
+pub mod rerun_sink;
+pub mod schemas;
 
 pub use observer::{Fanout, Memory, Observer, ObserverError};
 
 use crate::contact::law::ContactState;
 use crate::contact::system::{Config, PointHistory, PointNow};
 use crate::model::{ContactPair, Slave};
+use real::{Real, Real2, Reals};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -38,15 +44,20 @@ pub struct IterationRecord {
     pub increment: usize,
     /// Attempt of this increment (0 = first try, k = after k cut-backs).
     pub attempt: usize,
+    #[serde(with = "Real")]
     pub t: f64,
     pub iteration: usize,
     /// `‖R‖` over the free DOFs at the iterate this correction started from.
+    #[serde(with = "Real")]
     pub residual: f64,
     /// `|Δu · R|` of the correction.
+    #[serde(with = "Real")]
     pub energy: f64,
     /// Reference force `F_ref` of the residual criterion.
+    #[serde(with = "Real")]
     pub reference: f64,
     /// Line-search factor applied to the correction (1 without line search).
+    #[serde(with = "Real")]
     pub line_search: f64,
     /// Contact points whose state or segment changed since the previous iterate.
     pub active_set_changes: usize,
@@ -57,8 +68,10 @@ pub struct IterationRecord {
 pub struct MonitorRecord {
     pub label: String,
     /// Mean displacement of the set in the monitored direction (sign as configured).
+    #[serde(with = "Real")]
     pub displacement: f64,
     /// Sum of reactions/loads on the set in that direction (sign as configured).
+    #[serde(with = "Real")]
     pub force: f64,
 }
 
@@ -66,17 +79,22 @@ pub struct MonitorRecord {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct IncrementRecord {
     pub increment: usize,
+    #[serde(with = "Real")]
     pub t: f64,
+    #[serde(with = "Real")]
     pub dt: f64,
     pub iterations: usize,
     /// Cut-backs needed by this increment.
     pub cutbacks: usize,
     pub converged: bool,
+    #[serde(with = "Real")]
     pub wall_time_s: f64,
     /// Residual norms of the iterations of this increment.
+    #[serde(with = "Reals")]
     pub residuals: Vec<f64>,
     pub monitor: Option<MonitorRecord>,
     /// Sum of all reaction forces (x, y).
+    #[serde(with = "Real2")]
     pub reaction_total: [f64; 2],
 }
 
@@ -92,24 +110,34 @@ pub struct ContactPointRecord {
     pub segment: Option<usize>,
     /// Segment at the previous converged increment.
     pub previous_segment: Option<usize>,
+    #[serde(with = "Real")]
     pub xi: f64,
     /// Centre of the elastic region (sliding anchor) `ξ_sl = ξ + T_1/(ε_T a11)` on `segment`.
+    #[serde(with = "Real")]
     pub xi_anchor: f64,
     /// Signed gap `ζ` (negative = penetration).
+    #[serde(with = "Real")]
     pub gap: f64,
+    #[serde(with = "Real")]
     pub normal_force: f64,
     /// Trial tangential traction along the unit tangent (before return mapping).
+    #[serde(with = "Real")]
     pub trial_traction: f64,
     /// Returned tangential traction along the unit tangent.
+    #[serde(with = "Real")]
     pub traction: f64,
     pub state: ContactState,
     /// The point moved to another segment in this increment.
     pub crossing: bool,
     /// Slave position and contact point `ρ(ξ)`.
+    #[serde(with = "Real2")]
     pub position: [f64; 2],
+    #[serde(with = "Real2")]
     pub contact_point: [f64; 2],
     /// Unit normal and unit tangent of the master at the contact point.
+    #[serde(with = "Real2")]
     pub normal: [f64; 2],
+    #[serde(with = "Real2")]
     pub tangent: [f64; 2],
 }
 
@@ -188,19 +216,26 @@ pub struct CrossingRecord {
     pub from_segment: usize,
     pub to_segment: usize,
     /// `ξ_A` (stored) and `ξ_B` (current).
+    #[serde(with = "Real")]
     pub xi_from: f64,
+    #[serde(with = "Real")]
     pub xi_to: f64,
     /// Projection of the current slave position on `A`'s extension (`|ξ| > 1`).
+    #[serde(with = "Real")]
     pub xi_from_extended: f64,
     /// `Δρ = ρ_B(ξ_B) − ρ_A(ξ_A)` in the current configuration (seed eq. 2).
+    #[serde(with = "Real2")]
     pub delta_rho: [f64; 2],
     /// +1 forward along the chain, −1 backward.
     pub direction: i8,
     /// Trial traction on `A` extended (same-segment formula), along `A`'s unit tangent.
+    #[serde(with = "Real")]
     pub trial_before: f64,
     /// Trial traction on `B` after transfer by the pair's scheme, along `B`'s unit tangent.
+    #[serde(with = "Real")]
     pub trial_after: f64,
     /// Returned traction on `B`.
+    #[serde(with = "Real")]
     pub returned_after: f64,
 }
 
@@ -218,6 +253,7 @@ pub enum LogLevel {
 pub struct LogRecord {
     pub level: LogLevel,
     pub increment: usize,
+    #[serde(with = "Real")]
     pub t: f64,
     pub message: String,
 }
@@ -228,16 +264,20 @@ pub struct LogRecord {
 pub enum Outcome {
     Completed {
         increments: usize,
+        #[serde(with = "Real")]
         t: f64,
     },
     Failed {
         increment: usize,
+        #[serde(with = "Real")]
         t: f64,
         reason: String,
+        #[serde(with = "Reals")]
         residuals: Vec<f64>,
     },
     Interrupted {
         increment: usize,
+        #[serde(with = "Real")]
         t: f64,
     },
 }

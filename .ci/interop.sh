@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Interoperability checks of contrail recordings (called by .ci/run):
+#  - Python's `mcap` reader + `jsonschema` read and validate every message of recordings of a
+#    completed, a failed and a thinned run (.ci/interop.py);
+#  - the rerun CLI of rerun-sdk==0.36.3 (the crate's version) verifies the .rrd of a run and
+#    of a replay (`rerun rrd verify`).
+# The virtual environment is created on first use and reused (CONTRAIL_INTEROP_VENV).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/contrail-target}"
+VENV="${CONTRAIL_INTEROP_VENV:-$HOME/.cache/contrail-interop-venv}"
+PY_PACKAGES=("mcap==1.6.0" "jsonschema==4.26.0" "rerun-sdk==0.36.3")
+
+echo "== interop: python environment ($VENV)"
+if ! "$VENV/bin/python" -c "import mcap, jsonschema" 2>/dev/null \
+    || ! "$VENV/bin/rerun" --version 2>/dev/null | grep -q " 0\.36\.3 "; then
+    python3 -m venv "$VENV"
+    "$VENV/bin/pip" install --quiet --disable-pip-version-check "${PY_PACKAGES[@]}"
+fi
+"$VENV/bin/rerun" analytics disable >/dev/null 2>&1 || true
+"$VENV/bin/rerun" --version
+
+echo "== interop: recordings"
+cargo build --locked --quiet
+BIN="$CARGO_TARGET_DIR/debug/contrail"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+"$BIN" run crossing --quiet --out "$TMP/crossing.mcap" --rerun-save "$TMP/crossing.rrd"
+"$BIN" run strip-channel --quiet --set stepping.end=0.05 --set stepping.increments=220 \
+    --positions-every 10 --out "$TMP/strip.mcap" --rerun-save "$TMP/strip.rrd"
+set +e
+"$BIN" run strip-channel --quiet --set solver.max_iterations=1 --set stepping.max_cutbacks=0 \
+    --out "$TMP/failed.mcap" >"$TMP/failed.log" 2>&1
+rc=$?
+set -e
+if [ "$rc" -ne 1 ]; then
+    echo "a run meant to fail exited with $rc"; cat "$TMP/failed.log"; exit 1
+fi
+"$BIN" replay "$TMP/strip.mcap" --rerun-save "$TMP/strip-replay.rrd"
+
+echo "== interop: mcap + jsonschema"
+"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap"
+
+echo "== interop: rerun rrd verify"
+for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd"; do
+    "$VENV/bin/rerun" rrd verify "$f"
+done
+echo "interop: all checks passed"

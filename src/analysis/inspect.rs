@@ -1,0 +1,230 @@
+//! `contrail inspect`: what a recording holds and how its run ended.
+
+use super::recording::Recording;
+use crate::record::{LogLevel, Outcome};
+use serde::Serialize;
+use std::fmt::Write;
+
+/// Crossings of one slave point.
+#[derive(Debug, Clone, Serialize)]
+pub struct PointCrossings {
+    pub pair: usize,
+    pub pair_name: String,
+    pub slave: usize,
+    pub slave_label: String,
+    pub crossings: usize,
+    /// Increments in which the point crossed.
+    pub increments: Vec<usize>,
+}
+
+/// The summary of a recording.
+#[derive(Debug, Clone, Serialize)]
+pub struct InspectReport {
+    pub file: String,
+    pub size_bytes: u64,
+    pub bytes_per_increment: f64,
+    pub scene: String,
+    pub scene_origin: String,
+    pub description: String,
+    pub overrides: Vec<String>,
+    pub transfer: Vec<String>,
+    pub crate_version: String,
+    pub git_revision: String,
+    pub writer: String,
+    pub nodes: usize,
+    pub elements: usize,
+    pub contact_pairs: Vec<String>,
+    pub increments: usize,
+    pub final_t: f64,
+    pub end: f64,
+    pub newton_iterations: usize,
+    pub cutbacks: usize,
+    /// `completed`, `failed`, `interrupted`, or `unknown` (no outcome message).
+    pub status: String,
+    /// Why and where it stopped (failure reason, interruption), empty when completed.
+    pub stopped: String,
+    /// First increment whose Newton iteration failed (a cut-back or the final failure).
+    pub first_failure: Option<usize>,
+    pub crossings: usize,
+    pub crossings_per_point: Vec<PointCrossings>,
+    pub warnings: usize,
+    pub errors: usize,
+    pub last_log: Option<String>,
+    pub message_counts: std::collections::BTreeMap<String, u64>,
+    pub positions_every: String,
+    pub chunks: usize,
+}
+
+/// Summarise a recording.
+pub fn inspect(r: &Recording) -> InspectReport {
+    let meta = |k: &str| r.metadata.get(k).cloned().unwrap_or_default();
+    let (status, stopped, failed_at) = match &r.outcome {
+        Some(Outcome::Completed { .. }) => ("completed".to_string(), String::new(), None),
+        Some(Outcome::Failed {
+            increment,
+            t,
+            reason,
+            residuals,
+        }) => (
+            "failed".into(),
+            format!(
+                "increment {increment} at t = {t}: {reason} (last residuals {})",
+                residuals
+                    .iter()
+                    .map(|x| format!("{x:.3e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            Some(*increment),
+        ),
+        Some(Outcome::Interrupted { increment, t }) => (
+            "interrupted".into(),
+            format!("interrupted during increment {increment} (last converged t = {t})"),
+            Some(*increment),
+        ),
+        None => ("unknown".into(), "the recording has no outcome message".into(), None),
+    };
+    let first_cutback = r.iterations.iter().find(|i| i.attempt > 0).map(|i| i.increment);
+    let first_failure = match (first_cutback, failed_at) {
+        (Some(a), Some(b)) if matches!(r.outcome, Some(Outcome::Failed { .. })) => Some(a.min(b)),
+        (None, Some(b)) if matches!(r.outcome, Some(Outcome::Failed { .. })) => Some(b),
+        (a, _) => a,
+    };
+    let mut per_point: Vec<PointCrossings> = Vec::new();
+    for c in &r.crossings {
+        let (pair, slave) = (c.crossing.pair, c.crossing.slave);
+        let idx = match per_point.iter().position(|p| p.pair == pair && p.slave == slave) {
+            Some(i) => i,
+            None => {
+                let info = r.model.contacts.get(pair);
+                per_point.push(PointCrossings {
+                    pair,
+                    pair_name: info.map(|p| p.name.clone()).unwrap_or_default(),
+                    slave,
+                    slave_label: info.and_then(|p| p.slaves.get(slave).cloned()).unwrap_or_default(),
+                    crossings: 0,
+                    increments: Vec::new(),
+                });
+                per_point.len() - 1
+            }
+        };
+        per_point[idx].crossings += 1;
+        per_point[idx].increments.push(c.increment);
+    }
+    per_point.sort_by_key(|p| (p.pair, p.slave));
+    let last = r.increments.last();
+    InspectReport {
+        file: r.path.clone(),
+        size_bytes: r.size_bytes,
+        bytes_per_increment: r.size_bytes as f64 / r.increments.len().max(1) as f64,
+        scene: r.scene().to_string(),
+        scene_origin: meta("scene_origin"),
+        description: r.model.description.clone(),
+        overrides: r.metadata_list("overrides"),
+        transfer: r.metadata_list("transfer"),
+        crate_version: meta("crate_version"),
+        git_revision: meta("git_revision"),
+        writer: r.library.clone(),
+        nodes: r.model.nodes.len(),
+        elements: r.model.elements.len(),
+        contact_pairs: r
+            .model
+            .contacts
+            .iter()
+            .map(|p| format!("{}: {} slaves on {} ({})", p.name, p.slaves.len(), p.master, p.transfer))
+            .collect(),
+        increments: r.increments.len(),
+        final_t: last.map_or(0.0, |i| i.t),
+        end: r.model.end,
+        newton_iterations: r.iterations.len(),
+        cutbacks: r.increments.iter().map(|i| i.cutbacks).sum(),
+        status,
+        stopped,
+        first_failure,
+        crossings: r.crossings.len(),
+        crossings_per_point: per_point,
+        warnings: r.logs.iter().filter(|l| l.level == LogLevel::Warning).count(),
+        errors: r.logs.iter().filter(|l| l.level == LogLevel::Error).count(),
+        last_log: r.logs.last().map(|l| l.message.clone()),
+        message_counts: r.message_counts.clone(),
+        positions_every: meta("positions_every"),
+        chunks: r.chunks,
+    }
+}
+
+/// The report as a human-readable table.
+pub fn render(s: &InspectReport) -> String {
+    let mut o = String::new();
+    let mut row = |k: &str, v: String| {
+        let _ = writeln!(o, "{k:<18} {v}");
+    };
+    row(
+        "file",
+        format!(
+            "{} ({} bytes, {:.0} bytes/increment, {} chunks)",
+            s.file, s.size_bytes, s.bytes_per_increment, s.chunks
+        ),
+    );
+    row("scene", format!("{} ({})", s.scene, s.scene_origin));
+    if !s.description.is_empty() {
+        row("description", s.description.clone());
+    }
+    if !s.overrides.is_empty() {
+        row("overrides", s.overrides.join(" "));
+    }
+    row("transfer", s.transfer.join(", "));
+    row(
+        "written by",
+        format!("{} (contrail {}, git {})", s.writer, s.crate_version, s.git_revision),
+    );
+    row("model", format!("{} nodes, {} elements", s.nodes, s.elements));
+    for p in &s.contact_pairs {
+        row("contact pair", p.clone());
+    }
+    row(
+        "increments",
+        format!("{} to t = {} of {}", s.increments, s.final_t, s.end),
+    );
+    row(
+        "newton",
+        format!("{} iterations, {} cut-backs", s.newton_iterations, s.cutbacks),
+    );
+    row("ended", s.status.clone());
+    if !s.stopped.is_empty() {
+        row("stopped", s.stopped.clone());
+    }
+    row(
+        "first failure",
+        s.first_failure.map_or("none".into(), |i| format!("increment {i}")),
+    );
+    row("log", format!("{} warnings, {} errors", s.warnings, s.errors));
+    if let Some(l) = &s.last_log {
+        row("last log", l.clone());
+    }
+    row("crossings", s.crossings.to_string());
+    if !s.crossings_per_point.is_empty() {
+        let _ = writeln!(
+            o,
+            "\n  {:<12} {:<6} {:<16} {:>9}  increments",
+            "pair", "slave", "label", "crossings"
+        );
+        for p in &s.crossings_per_point {
+            let incs: Vec<String> = p.increments.iter().map(usize::to_string).collect();
+            let _ = writeln!(
+                o,
+                "  {:<12} {:<6} {:<16} {:>9}  {}",
+                p.pair_name,
+                p.slave,
+                p.slave_label,
+                p.crossings,
+                incs.join(" ")
+            );
+        }
+    }
+    let _ = writeln!(o, "\n  {:<12} {:>9}", "channel", "messages");
+    for (topic, n) in &s.message_counts {
+        let _ = writeln!(o, "  {topic:<12} {n:>9}");
+    }
+    let _ = writeln!(o, "  (positions every {} increments)", s.positions_every);
+    o
+}

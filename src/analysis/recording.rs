@@ -1,0 +1,245 @@
+//! Reading a contrail MCAP recording back into the record types (for `inspect`, `diff`,
+//! `replay` and the tests). Anything that is not a complete contrail recording is an error
+//! with a message that says why, never a panic.
+
+use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use crate::record::schemas;
+use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
+use mcap::records::Record;
+use serde::de::DeserializeOwned;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// A recording that could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordingError {
+    #[error("{path}: cannot read: {source}")]
+    Read { path: String, source: std::io::Error },
+    #[error("{path}: not a readable MCAP file (truncated or corrupt): {source}")]
+    Corrupt { path: String, source: mcap::McapError },
+    #[error("{path}: not a contrail recording ({detail})")]
+    NotContrail { path: String, detail: String },
+    #[error("{path}: recording format version {found}; this contrail reads version {expected}")]
+    Version {
+        path: String,
+        found: String,
+        expected: String,
+    },
+    #[error("{path}: message {sequence} on {topic} does not match its schema: {source}")]
+    Message {
+        path: String,
+        topic: String,
+        sequence: u32,
+        source: serde_json::Error,
+    },
+    #[error("{path}: {what}")]
+    Incomplete { path: String, what: String },
+}
+
+/// Everything in a recording.
+#[derive(Debug, Clone)]
+pub struct Recording {
+    pub path: String,
+    pub size_bytes: u64,
+    pub library: String,
+    /// The `contrail.run` metadata (scene, overrides, transfer, versions, parameters …).
+    pub metadata: BTreeMap<String, String>,
+    /// The scene file attachment (name, text).
+    pub scene_file: Option<(String, String)>,
+    pub model: ModelRecord,
+    pub increments: Vec<IncrementRecord>,
+    pub iterations: Vec<IterationRecord>,
+    /// Contact points by increment number.
+    pub contact: BTreeMap<usize, Vec<ContactPointRecord>>,
+    pub crossings: Vec<CrossingMessage>,
+    pub positions: Vec<PositionsMessage>,
+    pub logs: Vec<LogRecord>,
+    /// How the run ended (None: the recording has no outcome message).
+    pub outcome: Option<Outcome>,
+    /// Message count per topic.
+    pub message_counts: BTreeMap<String, u64>,
+    pub chunks: usize,
+}
+
+impl Recording {
+    /// Read a recording file.
+    pub fn open(path: &Path) -> Result<Recording, RecordingError> {
+        let name = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|source| RecordingError::Read {
+            path: name.clone(),
+            source,
+        })?;
+        Recording::from_bytes(&bytes, &name)
+    }
+
+    /// The scene name (from the metadata).
+    pub fn scene(&self) -> &str {
+        self.metadata
+            .get("scene")
+            .map_or(self.model.name.as_str(), String::as_str)
+    }
+
+    /// A JSON list in the metadata (`overrides`, `transfer`).
+    pub fn metadata_list(&self, key: &str) -> Vec<String> {
+        self.metadata
+            .get(key)
+            .and_then(|v| serde_json::from_str(v).ok())
+            .unwrap_or_default()
+    }
+
+    /// Parse a recording held in memory; `name` is used in error messages.
+    pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, RecordingError> {
+        let corrupt = |source| RecordingError::Corrupt {
+            path: name.to_string(),
+            source,
+        };
+        let not_ours = |detail: String| RecordingError::NotContrail {
+            path: name.to_string(),
+            detail,
+        };
+        let mut profile = None;
+        let mut library = String::new();
+        let mut metadata = None;
+        let mut scene_file = None;
+        let mut topics: HashMap<u16, String> = HashMap::new();
+        let mut schema_encodings: HashMap<u16, String> = HashMap::new();
+        let mut b = Builder::default();
+        let reader = mcap::read::ChunkFlattener::new(bytes).map_err(corrupt)?;
+        for rec in reader {
+            match rec.map_err(corrupt)? {
+                Record::Header(h) => {
+                    profile = Some(h.profile);
+                    library = h.library;
+                }
+                Record::Schema { header, .. } => {
+                    schema_encodings.insert(header.id, header.encoding);
+                }
+                Record::Channel(c) => {
+                    if schemas::channel(&c.topic).is_some() {
+                        if c.message_encoding != "json" {
+                            return Err(not_ours(format!(
+                                "channel {} has message encoding `{}`, expected json",
+                                c.topic, c.message_encoding
+                            )));
+                        }
+                        if schema_encodings.get(&c.schema_id).map(String::as_str) != Some("jsonschema") {
+                            return Err(not_ours(format!("channel {} has no jsonschema schema", c.topic)));
+                        }
+                    }
+                    topics.insert(c.id, c.topic);
+                }
+                Record::Metadata(m) if m.name == schemas::METADATA_NAME => metadata = Some(m.metadata),
+                Record::Attachment { header, data, .. } if header.media_type == "application/toml" => {
+                    scene_file = Some((header.name, String::from_utf8_lossy(&data).into_owned()));
+                }
+                Record::Message { header, data } => {
+                    let topic = topics
+                        .get(&header.channel_id)
+                        .ok_or_else(|| corrupt(mcap::McapError::UnknownChannel(header.sequence, header.channel_id)))?;
+                    b.message(topic, header.sequence, &data)
+                        .map_err(|(topic, sequence, source)| RecordingError::Message {
+                            path: name.to_string(),
+                            topic,
+                            sequence,
+                            source,
+                        })?;
+                }
+                _ => {}
+            }
+        }
+        match profile.as_deref() {
+            Some(schemas::PROFILE) => {}
+            Some(p) => {
+                return Err(not_ours(format!(
+                    "MCAP profile `{p}`{}, expected `{}`",
+                    if library.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" written by `{library}`")
+                    },
+                    schemas::PROFILE
+                )))
+            }
+            None => return Err(not_ours("no MCAP header".into())),
+        }
+        let metadata = metadata.ok_or_else(|| not_ours(format!("no `{}` metadata", schemas::METADATA_NAME)))?;
+        let version = metadata.get("format_version").cloned().unwrap_or_default();
+        if version != schemas::FORMAT_VERSION {
+            return Err(RecordingError::Version {
+                path: name.to_string(),
+                found: version,
+                expected: schemas::FORMAT_VERSION.into(),
+            });
+        }
+        let model = b.model.ok_or_else(|| RecordingError::Incomplete {
+            path: name.to_string(),
+            what: format!("no message on {}", schemas::MODEL),
+        })?;
+        Ok(Recording {
+            path: name.to_string(),
+            size_bytes: bytes.len() as u64,
+            library,
+            metadata,
+            scene_file,
+            model,
+            increments: b.increments,
+            iterations: b.iterations,
+            contact: b.contact,
+            crossings: b.crossings,
+            positions: b.positions,
+            logs: b.logs,
+            outcome: b.outcome,
+            message_counts: b.counts,
+            chunks: mcap::Summary::read(bytes)
+                .ok()
+                .flatten()
+                .and_then(|s| s.stats)
+                .map_or(0, |s| s.chunk_count as usize),
+        })
+    }
+
+    /// Contact points of an increment (empty if none were recorded).
+    pub fn contact_at(&self, increment: usize) -> &[ContactPointRecord] {
+        self.contact.get(&increment).map_or(&[], Vec::as_slice)
+    }
+}
+
+#[derive(Default)]
+struct Builder {
+    model: Option<ModelRecord>,
+    increments: Vec<IncrementRecord>,
+    iterations: Vec<IterationRecord>,
+    contact: BTreeMap<usize, Vec<ContactPointRecord>>,
+    crossings: Vec<CrossingMessage>,
+    positions: Vec<PositionsMessage>,
+    logs: Vec<LogRecord>,
+    outcome: Option<Outcome>,
+    counts: BTreeMap<String, u64>,
+}
+
+type MessageError = (String, u32, serde_json::Error);
+
+fn parse<T: DeserializeOwned>(topic: &str, sequence: u32, data: &[u8]) -> Result<T, MessageError> {
+    serde_json::from_slice(data).map_err(|e| (topic.to_string(), sequence, e))
+}
+
+impl Builder {
+    fn message(&mut self, topic: &str, seq: u32, data: &[u8]) -> Result<(), MessageError> {
+        *self.counts.entry(topic.to_string()).or_default() += 1;
+        match topic {
+            schemas::MODEL => self.model = Some(parse(topic, seq, data)?),
+            schemas::INCREMENT => self.increments.push(parse(topic, seq, data)?),
+            schemas::ITERATION => self.iterations.push(parse(topic, seq, data)?),
+            schemas::CONTACT => {
+                let m: ContactPointMessage = parse(topic, seq, data)?;
+                self.contact.entry(m.increment).or_default().push(m.point);
+            }
+            schemas::CROSSING => self.crossings.push(parse(topic, seq, data)?),
+            schemas::POSITIONS => self.positions.push(parse(topic, seq, data)?),
+            schemas::LOG => self.logs.push(parse(topic, seq, data)?),
+            schemas::OUTCOME => self.outcome = Some(parse(topic, seq, data)?),
+            _ => {}
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,240 @@
+//! MCAP sink: every record as a JSON message on its channel (see [`super::schemas`]),
+//! zstd-compressed chunks, the run's facts as MCAP metadata and the scene text as an
+//! attachment. `finish` writes the outcome as the last message and closes the file, so a
+//! failed or interrupted run still leaves a complete recording.
+
+use super::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use super::schemas::{self, CHANNELS};
+use super::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
+use crate::model::Model;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::io::{Seek, Write};
+use std::time::{Instant, SystemTime, UNIX_EPOCH};
+
+/// Options of the MCAP recorder.
+#[derive(Debug, Clone)]
+pub struct McapOptions {
+    /// Write node positions every N-th increment (and always the last one); 1 = every one.
+    pub positions_every: usize,
+    /// zstd compression of the chunks (on by default; off only for debugging).
+    pub compress: bool,
+}
+
+impl Default for McapOptions {
+    fn default() -> Self {
+        McapOptions {
+            positions_every: 1,
+            compress: true,
+        }
+    }
+}
+
+/// Writes a recording to `W` (a file, or a `Cursor<Vec<u8>>` in tests).
+pub struct McapSink<W: Write + Seek> {
+    writer: Option<mcap::Writer<W>>,
+    done: Option<W>,
+    name: String,
+    opts: McapOptions,
+    channel_ids: Vec<u16>,
+    sequence: Vec<u32>,
+    epoch_ns: u64,
+    started: Instant,
+    buf: Vec<u8>,
+    /// Positions of the last increment when they were thinned away (written at `finish`).
+    pending_positions: Option<PositionsMessage>,
+}
+
+impl<W: Write + Seek> McapSink<W> {
+    /// Start a recording on `out`; `name` names the sink in error messages (the file path).
+    pub fn new(out: W, name: &str, opts: McapOptions) -> Result<Self, ObserverError> {
+        let compression = if opts.compress {
+            Some(mcap::Compression::Zstd)
+        } else {
+            None
+        };
+        let writer = mcap::WriteOptions::new()
+            .profile(schemas::PROFILE)
+            .library(format!("contrail {}", crate::VERSION))
+            .compression(compression)
+            .create(out)
+            .map_err(|e| ObserverError::new(name, e))?;
+        Ok(McapSink {
+            writer: Some(writer),
+            done: None,
+            name: name.to_string(),
+            opts,
+            channel_ids: Vec::new(),
+            sequence: vec![0; CHANNELS.len()],
+            epoch_ns: SystemTime::now()
+                .duration_since(UNIX_EPOCH)
+                .map_or(0, |d| d.as_nanos() as u64),
+            started: Instant::now(),
+            buf: Vec::with_capacity(4096),
+            pending_positions: None,
+        })
+    }
+
+    /// The output after `finish` (tests read recordings from memory this way).
+    pub fn into_inner(self) -> Option<W> {
+        self.done
+    }
+
+    fn err(&self, e: impl Into<Box<dyn std::error::Error + Send + Sync>>) -> ObserverError {
+        ObserverError::new(&self.name, e)
+    }
+
+    fn writer(&mut self) -> Result<&mut mcap::Writer<W>, ObserverError> {
+        let name = self.name.clone();
+        self.writer
+            .as_mut()
+            .ok_or_else(|| ObserverError::new(&name, "the recording is already finished"))
+    }
+
+    fn put<T: Serialize>(&mut self, topic: &str, msg: &T) -> Result<(), ObserverError> {
+        let idx = CHANNELS
+            .iter()
+            .position(|c| c.topic == topic)
+            .ok_or_else(|| self.err(format!("unknown channel {topic}")))?;
+        let channel_id = *self
+            .channel_ids
+            .get(idx)
+            .ok_or_else(|| self.err("message before the recording was started"))?;
+        self.buf.clear();
+        serde_json::to_writer(&mut self.buf, msg).map_err(|e| self.err(e))?;
+        let now = self.epoch_ns + self.started.elapsed().as_nanos() as u64;
+        let header = mcap::records::MessageHeader {
+            channel_id,
+            sequence: self.sequence[idx],
+            log_time: now,
+            publish_time: now,
+        };
+        self.sequence[idx] += 1;
+        let buf = std::mem::take(&mut self.buf);
+        let r = self.writer()?.write_to_known_channel(&header, &buf);
+        self.buf = buf;
+        r.map_err(|e| self.err(e))
+    }
+
+    fn metadata(info: &RunInfo, model: &Model, opts: &McapOptions) -> BTreeMap<String, String> {
+        let json = |v: serde_json::Value| v.to_string();
+        let parameters = serde_json::json!({
+            "stepping": model.stepping,
+            "newton": model.newton,
+            "contact": model.contacts.iter().map(|c| serde_json::json!({
+                "name": c.name,
+                "law": c.law,
+                "transfer": c.transfer.name(),
+                "search_radius": c.search_radius,
+            })).collect::<Vec<_>>(),
+        });
+        let mut m = BTreeMap::new();
+        m.insert("format".into(), "contrail-recording".into());
+        m.insert("format_version".into(), schemas::FORMAT_VERSION.into());
+        m.insert("scene".into(), info.scene.clone());
+        m.insert("scene_origin".into(), info.scene_origin.clone());
+        m.insert("overrides".into(), json(serde_json::json!(info.overrides)));
+        m.insert("transfer".into(), json(serde_json::json!(info.transfer)));
+        m.insert("parameters".into(), json(parameters));
+        m.insert("crate_version".into(), info.crate_version.clone());
+        m.insert("git_revision".into(), info.git_revision.clone());
+        m.insert("dofs".into(), info.dofs.to_string());
+        m.insert("free_dofs".into(), info.free_dofs.to_string());
+        m.insert("positions_every".into(), opts.positions_every.max(1).to_string());
+        m.insert(
+            "non_finite".into(),
+            "NaN and infinities are the JSON strings \"NaN\", \"Infinity\", \"-Infinity\"".into(),
+        );
+        m
+    }
+}
+
+impl<W: Write + Seek> Observer for McapSink<W> {
+    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+        let metadata = Self::metadata(info, model, &self.opts);
+        let now = self.epoch_ns;
+        let name = self.name.clone();
+        let e = |e: mcap::McapError| ObserverError::new(&name, e);
+        let w = self.writer()?;
+        let mut ids = Vec::with_capacity(CHANNELS.len());
+        for c in CHANNELS {
+            let schema = w
+                .add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes())
+                .map_err(e)?;
+            let mut meta = BTreeMap::new();
+            meta.insert("description".to_string(), c.description.to_string());
+            ids.push(w.add_channel(schema, c.topic, "json", &meta).map_err(e)?);
+        }
+        w.write_metadata(&mcap::records::Metadata {
+            name: schemas::METADATA_NAME.into(),
+            metadata,
+        })
+        .map_err(e)?;
+        let scene_file = std::path::Path::new(&info.scene_origin)
+            .file_name()
+            .and_then(|f| f.to_str())
+            .filter(|f| f.ends_with(".toml"))
+            .map_or_else(|| format!("{}.toml", info.scene), str::to_string);
+        w.attach(&mcap::Attachment {
+            log_time: now,
+            create_time: now,
+            name: scene_file,
+            media_type: "application/toml".into(),
+            data: std::borrow::Cow::Borrowed(info.scene_text.as_bytes()),
+        })
+        .map_err(e)?;
+        self.channel_ids = ids;
+        self.put(schemas::MODEL, &ModelRecord::new(model))
+    }
+
+    fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
+        self.put(schemas::ITERATION, rec)
+    }
+
+    fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+        self.put(schemas::INCREMENT, rec)?;
+        for p in view.contact {
+            let msg = ContactPointMessage {
+                increment: rec.increment,
+                t: rec.t,
+                point: p.clone(),
+            };
+            self.put(schemas::CONTACT, &msg)?;
+        }
+        for c in view.crossings {
+            let msg = CrossingMessage {
+                increment: rec.increment,
+                t: rec.t,
+                crossing: c.clone(),
+            };
+            self.put(schemas::CROSSING, &msg)?;
+        }
+        let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
+        if rec.increment.is_multiple_of(self.opts.positions_every.max(1)) {
+            self.pending_positions = None;
+            self.put(schemas::POSITIONS, &positions)
+        } else {
+            self.pending_positions = Some(positions);
+            Ok(())
+        }
+    }
+
+    fn log(&mut self, rec: &LogRecord) -> Result<(), ObserverError> {
+        self.put(schemas::LOG, rec)
+    }
+
+    fn finish(&mut self, outcome: &Outcome) -> Result<(), ObserverError> {
+        let mut first = Ok(());
+        if let Some(p) = self.pending_positions.take() {
+            first = self.put(schemas::POSITIONS, &p);
+        }
+        let r = self.put(schemas::OUTCOME, outcome);
+        first = first.and(r);
+        let mut writer = self.writer.take().ok_or_else(|| self.err("finish called twice"))?;
+        let closed = writer.finish().map_err(|e| self.err(e));
+        let mut out = writer.into_inner();
+        let flushed = out.flush().map_err(|e| self.err(e));
+        self.done = Some(out);
+        first.and(closed.map(|_| ())).and(flushed)
+    }
+}

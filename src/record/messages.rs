@@ -1,0 +1,265 @@
+//! Message types of a recording that are not solver records themselves: the static model,
+//! node positions, and the per-increment envelopes of contact points and crossings. Their
+//! JSON Schemas sit in `schemas/` next to those of the solver records.
+
+use super::real::{Real, Real2};
+use super::{ContactPointRecord, CrossingRecord};
+use crate::model::{Master, Model, RigidShape, Slave};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// A deformable body of the mesh.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct BodyInfo {
+    pub name: String,
+    /// `q4` or `q4-eas`.
+    pub element: String,
+    /// Its nodes are `first_node .. first_node + node_count`.
+    pub first_node: usize,
+    pub node_count: usize,
+    /// Named boundary faces as node pairs `[a, b]`, counter-clockwise around the body.
+    pub faces: Vec<FaceInfo>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct FaceInfo {
+    pub name: String,
+    pub segments: Vec<[usize; 2]>,
+}
+
+/// A rigid body in its reference position: each piece drawn as a polyline (a point body
+/// has one polyline of one point). Its motion is recorded with the node positions.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct RigidInfo {
+    pub name: String,
+    /// `point` or `surface`.
+    pub kind: String,
+    /// One polyline per piece (the segment ids of a rigid master are these piece indices).
+    pub pieces: Vec<Vec<[f64; 2]>>,
+}
+
+/// A contact pair: its slaves and master.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PairInfo {
+    pub name: String,
+    /// `node N` or `rigid NAME`, in slave order.
+    pub slaves: Vec<String>,
+    /// `body NAME` or `rigid NAME`.
+    pub master: String,
+    /// Master segments of a deformable face as node pairs (empty for a rigid master).
+    pub master_segments: Vec<[usize; 2]>,
+    pub transfer: String,
+    pub eps_n: f64,
+    pub eps_t: f64,
+    pub mu: f64,
+}
+
+/// The static model, written once at the start (channel `/model`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ModelRecord {
+    pub name: String,
+    pub description: String,
+    /// Reference coordinates of the nodes.
+    pub nodes: Vec<[f64; 2]>,
+    /// Quadrilaterals: four node ids, counter-clockwise.
+    pub elements: Vec<[usize; 4]>,
+    /// Body index of each element.
+    pub element_body: Vec<usize>,
+    pub bodies: Vec<BodyInfo>,
+    pub rigid: Vec<RigidInfo>,
+    pub contacts: Vec<PairInfo>,
+    /// Label of the load–displacement monitor, if the scene has one.
+    pub monitor: Option<String>,
+    /// Final pseudo-time of the stepping.
+    pub end: f64,
+}
+
+impl ModelRecord {
+    pub fn new(model: &Model) -> Self {
+        let bodies = model
+            .bodies
+            .iter()
+            .map(|b| BodyInfo {
+                name: b.name.clone(),
+                element: serde_json::to_value(b.kind)
+                    .ok()
+                    .and_then(|v| v.as_str().map(str::to_string))
+                    .unwrap_or_default(),
+                first_node: b.first_node,
+                node_count: b.node_count,
+                faces: b
+                    .faces
+                    .iter()
+                    .map(|(name, segments)| FaceInfo {
+                        name: name.clone(),
+                        segments: segments.clone(),
+                    })
+                    .collect(),
+            })
+            .collect();
+        let rigid = model
+            .rigid
+            .iter()
+            .map(|r| match &r.shape {
+                RigidShape::Point { at } => RigidInfo {
+                    name: r.name.clone(),
+                    kind: "point".into(),
+                    pieces: vec![vec![*at]],
+                },
+                RigidShape::Surface { pieces } => RigidInfo {
+                    name: r.name.clone(),
+                    kind: "surface".into(),
+                    pieces: pieces.iter().map(|p| p.polyline(24)).collect(),
+                },
+            })
+            .collect();
+        let contacts = model
+            .contacts
+            .iter()
+            .map(|c| PairInfo {
+                name: c.name.clone(),
+                slaves: c.slaves.iter().map(|s| slave_label(model, *s)).collect(),
+                master: match &c.master {
+                    Master::Face { body, .. } => format!("body {}", model.bodies[*body].name),
+                    Master::Rigid { body, .. } => format!("rigid {}", model.rigid[*body].name),
+                },
+                master_segments: match &c.master {
+                    Master::Face { segments, .. } => segments.clone(),
+                    Master::Rigid { .. } => Vec::new(),
+                },
+                transfer: c.transfer.name().to_string(),
+                eps_n: c.law.eps_n,
+                eps_t: c.law.eps_t,
+                mu: c.law.mu,
+            })
+            .collect();
+        ModelRecord {
+            name: model.name.clone(),
+            description: model.description.clone(),
+            nodes: model.nodes.clone(),
+            elements: model.elements.iter().map(|e| e.nodes).collect(),
+            element_body: model.elements.iter().map(|e| e.body).collect(),
+            bodies,
+            rigid,
+            contacts,
+            monitor: model.monitor.as_ref().map(|m| m.label.clone()),
+            end: model.stepping.end,
+        }
+    }
+
+    /// Unique element edges (node pairs), in first-seen order.
+    pub fn edges(&self) -> Vec<[usize; 2]> {
+        let mut seen = std::collections::HashSet::new();
+        let mut out = Vec::new();
+        for e in &self.elements {
+            for k in 0..4 {
+                let (a, b) = (e[k], e[(k + 1) % 4]);
+                if seen.insert((a.min(b), a.max(b))) {
+                    out.push([a, b]);
+                }
+            }
+        }
+        out
+    }
+
+    /// Same mesh and contact layout (what `diff` needs to align two recordings).
+    pub fn same_layout(&self, other: &ModelRecord) -> bool {
+        self.nodes.len() == other.nodes.len()
+            && self.elements == other.elements
+            && self.rigid.len() == other.rigid.len()
+            && self.contacts.len() == other.contacts.len()
+            && self
+                .contacts
+                .iter()
+                .zip(&other.contacts)
+                .all(|(a, b)| a.slaves == b.slaves && a.master == b.master)
+    }
+}
+
+fn slave_label(model: &Model, s: Slave) -> String {
+    match s {
+        Slave::Node(n) => format!("node {n}"),
+        Slave::RigidPoint(r) => format!("rigid {}", model.rigid[r].name),
+    }
+}
+
+/// A contact slave point at the end of a converged increment (channel `/contact`): the
+/// increment and load level, then the fields of the solver's contact-point record.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct ContactPointMessage {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    #[serde(flatten)]
+    pub point: ContactPointRecord,
+}
+
+/// A crossing of a master-segment boundary in a converged increment (channel `/crossing`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct CrossingMessage {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    #[serde(flatten)]
+    pub crossing: CrossingRecord,
+}
+
+/// Current positions after a converged increment (channel `/positions`; every increment, or
+/// every N-th and the last one with `--positions-every N`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+pub struct PositionsMessage {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    /// Current coordinates `X + u` of every node.
+    #[schemars(with = "Vec<Real2>")]
+    #[serde(with = "real_pairs")]
+    pub nodes: Vec<[f64; 2]>,
+    /// Translation of each rigid body (same order as the model's `rigid`).
+    #[schemars(with = "Vec<Real2>")]
+    #[serde(with = "real_pairs")]
+    pub rigid_offsets: Vec<[f64; 2]>,
+}
+
+mod real_pairs {
+    use super::super::real::Real2;
+    use serde::ser::SerializeSeq;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    struct P<'a>(&'a [f64; 2]);
+    impl serde::Serialize for P<'_> {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            Real2::serialize(self.0, s)
+        }
+    }
+    #[derive(Deserialize)]
+    struct D(#[serde(with = "Real2")] [f64; 2]);
+
+    pub fn serialize<S: Serializer>(v: &[[f64; 2]], s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(v.len()))?;
+        for p in v {
+            seq.serialize_element(&P(p))?;
+        }
+        seq.end()
+    }
+    pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<[f64; 2]>, De::Error> {
+        let v: Vec<D> = Vec::deserialize(d)?;
+        Ok(v.into_iter().map(|D(p)| p).collect())
+    }
+}
+
+impl PositionsMessage {
+    pub fn new(increment: usize, t: f64, model: &Model, u: &[f64]) -> Self {
+        PositionsMessage {
+            increment,
+            t,
+            nodes: model
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(i, x)| [x[0] + u[2 * i], x[1] + u[2 * i + 1]])
+                .collect(),
+            rigid_offsets: model.rigid.iter().map(|r| r.offset(t)).collect(),
+        }
+    }
+}
