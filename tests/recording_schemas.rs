@@ -34,3 +34,39 @@ fn every_schema_is_a_2020_12_object_schema_and_documents_non_finite_reals() {
         }
     }
 }
+
+#[test]
+fn every_real_of_a_per_increment_record_can_carry_nan_and_infinity() {
+    // a plain `f64` field has the schema {"type": "number", "format": "double"} and is written
+    // as `null` when NaN, which no reader gets back: give it `#[serde(with = "Real")]`
+    // (`Real2` for `[f64; 2]`, `Reals` for `Vec<f64>`, see src/record/real.rs)
+    for c in CHANNELS.iter().filter(|c| c.topic != schemas::MODEL) {
+        let v: serde_json::Value = serde_json::from_str(&c.schema_text()).unwrap();
+        let mut plain = Vec::new();
+        find_doubles(&v, "", &mut plain);
+        assert!(
+            plain.is_empty(),
+            "{}: plain f64 fields {plain:?}; add #[serde(with = \"Real\")] to them",
+            c.file
+        );
+    }
+}
+
+fn find_doubles(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            if m.get("format").and_then(|f| f.as_str()) == Some("double") {
+                out.push(at.to_string());
+            }
+            for (k, x) in m {
+                find_doubles(x, &format!("{at}/{k}"), out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            for (i, x) in a.iter().enumerate() {
+                find_doubles(x, &format!("{at}/{i}"), out);
+            }
+        }
+        _ => {}
+    }
+}

@@ -104,9 +104,27 @@ impl Recording {
         let mut topics: HashMap<u16, String> = HashMap::new();
         let mut schema_encodings: HashMap<u16, String> = HashMap::new();
         let mut b = Builder::default();
-        let reader = mcap::read::ChunkFlattener::new(bytes).map_err(corrupt)?;
-        for rec in reader {
-            match rec.map_err(corrupt)? {
+        let mut reader = mcap::sans_io::LinearReader::new_with_options(
+            mcap::sans_io::LinearReaderOptions::default()
+                .with_prevalidate_chunk_crcs(true)
+                .with_validate_data_section_crc(true)
+                .with_validate_summary_section_crc(true)
+                .with_check_finishes_after_end_magic(true)
+                .with_record_length_limit(length_limit(bytes.len())),
+        );
+        let mut rest = bytes;
+        while let Some(event) = reader.next_event() {
+            let (opcode, data) = match event.map_err(corrupt)? {
+                mcap::sans_io::LinearReadEvent::ReadRequest(need) => {
+                    let n = need.min(rest.len());
+                    reader.insert(n).copy_from_slice(&rest[..n]);
+                    reader.notify_read(n);
+                    rest = &rest[n..];
+                    continue;
+                }
+                mcap::sans_io::LinearReadEvent::Record { opcode, data } => (opcode, data),
+            };
+            match mcap::parse_record(opcode, data).map_err(corrupt)? {
                 Record::Header(h) => {
                     profile = Some(h.profile);
                     library = h.library;
@@ -202,6 +220,12 @@ impl Recording {
     pub fn contact_at(&self, increment: usize) -> &[ContactPointRecord] {
         self.contact.get(&increment).map_or(&[], Vec::as_slice)
     }
+}
+
+/// Largest record (a decompressed chunk included) a corrupt length field may announce before
+/// it is refused rather than allocated: JSON compresses well, but not 200-fold.
+fn length_limit(file_len: usize) -> usize {
+    file_len.saturating_mul(200).clamp(64 << 20, 4 << 30)
 }
 
 #[derive(Default)]

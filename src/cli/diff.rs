@@ -48,8 +48,10 @@ fn render(d: &DiffReport) -> String {
     let mut o = String::new();
     let _ = writeln!(
         o,
-        "diff of scene {} aligned by {:?} (tol {:e})",
-        d.scene, d.align, d.tol
+        "diff of scene {} aligned by {} (tol {:e})",
+        d.scene,
+        format!("{:?}", d.align).to_lowercase(),
+        d.tol
     );
     for (n, e) in [("A", &d.a), ("B", &d.b)] {
         let _ = writeln!(
@@ -153,6 +155,7 @@ pub fn diff(a: DiffArgs) -> anyhow::Result<ExitCode> {
             Align::Increment => "increment",
             Align::Load => "load level t",
         };
+        register_font();
         line_chart(path, &title, x, &a.field, &series).map_err(|e| BadInput(e.to_string()))?;
     }
     if a.json {
@@ -168,6 +171,17 @@ pub fn diff(a: DiffArgs) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// plotters lays out SVG text with a registered font too, and `analysis::plot` registers its
+/// embedded font only for PNG output; register it here so `--plot FILE.svg` works on machines
+/// without system fonts.
+fn register_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let font: &'static [u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+        let _ = plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font);
+    });
 }
 
 /// The point (pair, slave) of the first divergence of a contact field.

@@ -19,6 +19,11 @@ pub struct McapOptions {
     pub positions_every: usize,
     /// zstd compression of the chunks (on by default; off only for debugging).
     pub compress: bool,
+    /// zstd level (0: the library default; 19 for small golden files).
+    pub compression_level: u32,
+    /// Message index records (for seeking by time; readers work without them). Off for the
+    /// golden files, where they would be a third of the size.
+    pub message_indexes: bool,
 }
 
 impl Default for McapOptions {
@@ -26,6 +31,8 @@ impl Default for McapOptions {
         McapOptions {
             positions_every: 1,
             compress: true,
+            compression_level: 0,
+            message_indexes: true,
         }
     }
 }
@@ -57,6 +64,8 @@ impl<W: Write + Seek> McapSink<W> {
             .profile(schemas::PROFILE)
             .library(format!("contrail {}", crate::VERSION))
             .compression(compression)
+            .compression_level(opts.compression_level)
+            .emit_message_indexes(opts.message_indexes)
             .create(out)
             .map_err(|e| ObserverError::new(name, e))?;
         Ok(McapSink {

@@ -8,6 +8,7 @@ pub mod messages;
 mod observer;
 pub mod real;
 pub mod rerun_sink;
+mod rerun_view;
 pub mod schemas;
 
 pub use observer::{Fanout, Memory, Observer, ObserverError};

@@ -1,0 +1,294 @@
+//! MCAP recordings read back to what the solver reported: every record, NaN included; runs
+//! that fail or are interrupted still leave a complete recording whose last message says why.
+
+use contrail::analysis::diff::{diff, Align};
+use contrail::analysis::inspect::inspect;
+use contrail::analysis::recording::Recording;
+use contrail::model::Model;
+use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::rerun_sink::{self, RerunSink, RerunTargets, RerunView};
+use contrail::record::{
+    ContactPointRecord, Fanout, IterationRecord, Memory, Observer, ObserverError, Outcome, RunInfo,
+};
+use contrail::solver::run;
+use std::io::Cursor;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+fn load(name: &str, sets: &[&str]) -> (Model, RunInfo) {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let (src, model) = contrail::load_scene(name, &sets).unwrap_or_else(|e| panic!("{e}"));
+    let info = contrail::run_info(&src, &sets, &model);
+    (model, info)
+}
+
+/// Run into an in-memory MCAP and a `Memory`; return the bytes, the memory and whether the
+/// run completed. `extra` sees every call too (it may set `stop`).
+fn record(
+    model: &Model,
+    info: &RunInfo,
+    opts: McapOptions,
+    extra: Option<&mut dyn Observer>,
+    stop: &AtomicBool,
+) -> (Vec<u8>, Memory, bool) {
+    let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", opts).unwrap();
+    let mut mem = Memory::default();
+    let mut fan = Fanout::default();
+    fan.sinks.push(&mut sink);
+    fan.sinks.push(&mut mem);
+    if let Some(e) = extra {
+        fan.sinks.push(e);
+    }
+    let ok = run(model, info, &mut fan, stop).is_ok();
+    drop(fan);
+    (sink.into_inner().unwrap().into_inner(), mem, ok)
+}
+
+fn same(a: f64, b: f64) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
+}
+
+fn same_point(a: &ContactPointRecord, b: &ContactPointRecord) -> bool {
+    let pairs = |x: [f64; 2], y: [f64; 2]| same(x[0], y[0]) && same(x[1], y[1]);
+    a.pair == b.pair
+        && a.slave == b.slave
+        && a.slave_label == b.slave_label
+        && a.segment == b.segment
+        && a.previous_segment == b.previous_segment
+        && same(a.xi, b.xi)
+        && same(a.xi_anchor, b.xi_anchor)
+        && same(a.gap, b.gap)
+        && same(a.normal_force, b.normal_force)
+        && same(a.trial_traction, b.trial_traction)
+        && same(a.traction, b.traction)
+        && a.state == b.state
+        && a.crossing == b.crossing
+        && pairs(a.position, b.position)
+        && pairs(a.contact_point, b.contact_point)
+        && pairs(a.normal, b.normal)
+        && pairs(a.tangent, b.tangent)
+}
+
+#[test]
+fn a_recording_reads_back_to_what_the_solver_reported() {
+    let (model, info) = load("crossing", &[]);
+    let opts = McapOptions {
+        positions_every: 7,
+        ..McapOptions::default()
+    };
+    let (bytes, mem, ok) = record(&model, &info, opts, None, &AtomicBool::new(false));
+    assert!(ok);
+    let r = Recording::from_bytes(&bytes, "crossing.mcap").unwrap();
+    assert_eq!(r.scene(), "crossing");
+    assert_eq!(r.metadata["crate_version"], contrail::VERSION);
+    assert_eq!(r.metadata["git_revision"], contrail::GIT_REVISION);
+    assert_eq!(r.scene_file.as_ref().unwrap().1, info.scene_text);
+    assert_eq!(r.model.nodes, model.nodes);
+    assert_eq!(r.increments.len(), mem.increments.len());
+    assert_eq!(r.iterations.len(), mem.iterations.len());
+    for (a, b) in r.increments.iter().zip(&mem.increments) {
+        assert_eq!(
+            (a.increment, a.iterations, a.cutbacks),
+            (b.increment, b.iterations, b.cutbacks)
+        );
+        assert_eq!(a.t, b.t);
+        assert_eq!(a.residuals, b.residuals);
+    }
+    for (inc, points) in r.increments.iter().zip(&mem.contact) {
+        let got = r.contact_at(inc.increment);
+        assert_eq!(got.len(), points.len());
+        for (a, b) in got.iter().zip(points) {
+            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
+        }
+    }
+    assert_eq!(r.crossings.len(), mem.crossings.len());
+    for (a, (inc, b)) in r.crossings.iter().zip(&mem.crossings) {
+        assert_eq!(a.increment, *inc);
+        assert_eq!(
+            (a.crossing.from_segment, a.crossing.to_segment),
+            (b.from_segment, b.to_segment)
+        );
+        assert!(same(a.crossing.trial_after, b.trial_after));
+    }
+    assert_eq!(r.logs.len(), mem.logs.len());
+    assert_eq!(r.outcome, mem.outcome);
+    let n = r.increments.len();
+    let expected: Vec<usize> = (1..=n).filter(|i| i % 7 == 0 || *i == n).collect();
+    let got: Vec<usize> = r.positions.iter().map(|p| p.increment).collect();
+    assert_eq!(got, expected, "positions every 7th increment and the last");
+    let last = r.positions.last().unwrap();
+    for (i, x) in model.nodes.iter().enumerate() {
+        assert_eq!(
+            last.nodes[i],
+            [x[0] + mem.final_u[2 * i], x[1] + mem.final_u[2 * i + 1]]
+        );
+    }
+    let s = inspect(&r);
+    assert_eq!(
+        (s.status.as_str(), s.increments, s.crossings),
+        ("completed", n, mem.crossings.len())
+    );
+    let d = diff(&r, &r, Align::Increment, 0.0).unwrap();
+    assert!(d.within_tolerance);
+    assert!(d
+        .fields
+        .iter()
+        .all(|f| f.compared > 0 && f.beyond_tolerance == 0 && f.max_abs == 0.0));
+}
+
+#[test]
+fn non_finite_values_are_written_as_strings_and_read_back() {
+    // the strip's bottom nodes left of the corner are open: no segment, NaN ξ and gap
+    let (model, info) = load("strip-channel", &["stepping.end=0.002", "stepping.increments=8"]);
+    let (bytes, mem, _) = record(&model, &info, McapOptions::default(), None, &AtomicBool::new(false));
+    let mut nan_strings = 0;
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        let text = std::str::from_utf8(&m.data).unwrap();
+        if m.channel.topic == "/contact" {
+            let v: serde_json::Value = serde_json::from_str(text).unwrap();
+            for (k, x) in v.as_object().unwrap() {
+                assert!(
+                    !x.is_null() || k.ends_with("segment"),
+                    "{k} is null: NaN must be a string"
+                );
+            }
+        }
+        nan_strings += text.matches("\"NaN\"").count();
+    }
+    assert!(nan_strings > 0);
+    let r = Recording::from_bytes(&bytes, "strip.mcap").unwrap();
+    let mut nan_read = 0;
+    for (inc, points) in r.increments.iter().zip(&mem.contact) {
+        for (a, b) in r.contact_at(inc.increment).iter().zip(points) {
+            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
+            nan_read += a.xi.is_nan() as usize;
+        }
+    }
+    assert!(nan_read > 0);
+}
+
+/// Sets the stop flag after `after` Newton iterations (as Ctrl-C does).
+struct StopAfter<'a> {
+    after: usize,
+    seen: usize,
+    stop: &'a AtomicBool,
+}
+
+impl Observer for StopAfter<'_> {
+    fn iteration(&mut self, _r: &IterationRecord) -> Result<(), ObserverError> {
+        self.seen += 1;
+        if self.seen >= self.after {
+            self.stop.store(true, Ordering::SeqCst);
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn an_interrupted_run_leaves_a_complete_recording_that_says_so() {
+    let (model, info) = load("block-slide", &[]);
+    let stop = AtomicBool::new(false);
+    let mut stopper = StopAfter {
+        after: 40,
+        seen: 0,
+        stop: &stop,
+    };
+    let (bytes, mem, ok) = record(&model, &info, McapOptions::default(), Some(&mut stopper), &stop);
+    assert!(!ok);
+    let r = Recording::from_bytes(&bytes, "interrupted.mcap").unwrap();
+    assert!(
+        matches!(r.outcome, Some(Outcome::Interrupted { .. })),
+        "{:?}",
+        r.outcome
+    );
+    assert_eq!(r.outcome, mem.outcome);
+    assert_eq!(r.iterations.len(), 40);
+    assert!(r.logs.last().unwrap().message.contains("interrupted"));
+    let last = mcap::MessageStream::new(&bytes).unwrap().last().unwrap().unwrap();
+    assert_eq!(last.channel.topic, "/outcome");
+    assert_eq!(inspect(&r).status, "interrupted");
+}
+
+#[test]
+fn a_failed_run_records_where_and_why_with_the_failed_iterations() {
+    let (model, info) = load(
+        "strip-channel",
+        &[
+            "solver.max_iterations=2",
+            "stepping.max_cutbacks=1",
+            "stepping.end=0.05",
+        ],
+    );
+    let (bytes, _, ok) = record(&model, &info, McapOptions::default(), None, &AtomicBool::new(false));
+    assert!(!ok, "the run was meant to fail");
+    let r = Recording::from_bytes(&bytes, "failed.mcap").unwrap();
+    let Some(Outcome::Failed {
+        increment, residuals, ..
+    }) = &r.outcome
+    else {
+        panic!("{:?}", r.outcome)
+    };
+    let failed: Vec<_> = r.iterations.iter().filter(|i| i.increment == *increment).collect();
+    assert!(
+        !failed.is_empty(),
+        "the failed increment's Newton iterations are recorded"
+    );
+    assert!(failed.iter().any(|i| i.attempt == 1), "its cut-back attempt too");
+    assert!(!residuals.is_empty());
+    let s = inspect(&r);
+    assert_eq!(s.status, "failed");
+    assert!(s.first_failure.is_some_and(|f| f <= *increment));
+    assert!(s.errors >= 1);
+    let last = mcap::MessageStream::new(&bytes).unwrap().last().unwrap().unwrap();
+    assert_eq!(last.channel.topic, "/outcome");
+}
+
+#[test]
+fn the_rerun_file_of_a_run_and_of_its_replay_are_written() {
+    let dir = std::env::temp_dir().join(format!("contrail-rerun-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (model, info) = load("crossing", &[]);
+    let live = dir.join("live.rrd");
+    let stream = rerun_sink::open(
+        &RerunTargets {
+            save: Some(live.clone()),
+            ..RerunTargets::default()
+        },
+        "crossing",
+    )
+    .unwrap();
+    let mut rr = RerunSink::new(stream, "rerun");
+    let (bytes, _, ok) = record(
+        &model,
+        &info,
+        McapOptions::default(),
+        Some(&mut rr),
+        &AtomicBool::new(false),
+    );
+    assert!(ok);
+    let r = Recording::from_bytes(&bytes, "crossing.mcap").unwrap();
+    let replayed = dir.join("replay.rrd");
+    let stream = rerun_sink::open(
+        &RerunTargets {
+            save: Some(replayed.clone()),
+            ..RerunTargets::default()
+        },
+        "crossing",
+    )
+    .unwrap();
+    let mut view = RerunView::new(stream, &r.model).unwrap();
+    for inc in &r.increments {
+        view.increment(inc, None, r.contact_at(inc.increment), &[]).unwrap();
+    }
+    view.finish().unwrap();
+    for f in [&live, &replayed] {
+        let b = std::fs::read(f).unwrap();
+        assert!(
+            b.len() > 1000 && b.starts_with(b"RRF"),
+            "{}: {} bytes",
+            f.display(),
+            b.len()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
