@@ -77,14 +77,23 @@ fn cantilever_elastica_newton_converges_quadratically() {
     let (_, _, mem) = tip(4.0, [24, 1], 40);
     let mut orders = Vec::new();
     for inc in &mem.increments {
-        let e: Vec<f64> = mem.iterations.iter().filter(|it| it.increment == inc.increment).map(|it| it.energy).collect();
+        let e: Vec<f64> = mem
+            .iterations
+            .iter()
+            .filter(|it| it.increment == inc.increment)
+            .map(|it| it.energy)
+            .collect();
         // iterates above the round-off floor of the energy norm
         let e: Vec<f64> = e.into_iter().filter(|v| *v > 1e-24).collect();
         if let Some(p) = observed_orders(&e, 0.0).last() {
             orders.push(*p);
         }
         if inc.increment % 10 == 0 {
-            let ratios: Vec<String> = inc.residuals.windows(2).map(|w| format!("{:.1e}", w[1] / w[0])).collect();
+            let ratios: Vec<String> = inc
+                .residuals
+                .windows(2)
+                .map(|w| format!("{:.1e}", w[1] / w[0]))
+                .collect();
             println!("increment {}: residual ratios {}", inc.increment, ratios.join(" "));
         }
     }

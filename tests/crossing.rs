@@ -2,24 +2,24 @@
 //! boundaries in stick (scene `crossing`): the unit behaviour of the transfer schemes.
 //!
 //! ```text
-//!        P → → → → → → → → →        rigid point, pressed 0.002, dragged 1.6 in x
+//!        P → → → → → → → → →        rigid point, pressed 1e-4, dragged 1.6 in x
 //!   +----+------+---------+------------+   top face: 4 segments, lengths grow ×3
-//!   |    block 2 × 0.5, E = 1e4        |   bottom fixed
+//!   |    block 2 × 0.5, E = 1e7        |   bottom fixed (stiff: the face stays flat)
 //!   +----------------------------------+
 //! ```
-//! ε_N = 1e4, ε_T = 1e3, μ = 100 (stick throughout).
+//! ε_N = 1e6, ε_T = 1e3, μ = 100 (stick throughout). A kink θ of the deformed face adds a
+//! scheme-independent difference ≈ ε_T |ζ| θ (the penetrated point projects onto A's line and
+//! B with feet |ζ| θ apart); the stiff block keeps it near 1e-8 ε_T.
 //! References (notes, "History transfer"): with `continuous` and `path-length` the trial
 //! traction is continuous across a boundary — |after − before| < 1e-6 ε_T, where "before" is
 //! the same-segment trial on A's extension in the same configuration; with `straightforward`
 //! the trial jumps by the amount the notes predict,
 //! `t_after − t_before = ε_T [√a11^A (ξ_ext − ξ_A) − √a11^B (ξ_B − ξ_A)] + t^(n) (√a11^A/√a11^B − 1)`
 //! (about `ε_T ℓ_B`, "2 ε_T" in ξ units), asserted to 1 % (segment lengths taken from the
-//! reference mesh; strains are ~1e-3). Newton's observed order at crossing increments ≥ 1.8
-//! for the consistent schemes.
+//! reference mesh). At crossing increments Newton needs ≤ 3 corrections and the first one
+//! cuts ‖R‖ by ≥ 1e4.
 
 mod common;
-
-use contrail::solver::newton::observed_orders;
 
 const EPS_T: f64 = 1.0e3;
 
@@ -58,14 +58,22 @@ fn crossing_continuous_and_path_length_are_continuous() {
                 "stays in stick"
             );
         }
-        // consistent tangent at the crossing increments
+        // the crossing step's element includes A's nodes: Newton stays as fast as elsewhere
+        // (this stick problem is nearly linear, so two corrections reach round-off; the order
+        // at crossings is measured on the strip-channel benchmark)
         for (inc, _) in &mem.crossings {
             let r = &mem.increments[inc - 1].residuals;
-            let orders = observed_orders(r, 1e-9 * r[0]);
-            println!("{scheme}: crossing increment {inc}: residuals {r:?}, orders {orders:.2?}");
-            if let Some(p) = orders.last() {
-                assert!(*p >= 1.8, "{scheme}: order {p} at crossing increment {inc}");
-            }
+            println!("{scheme}: crossing increment {inc}: residuals {r:?}");
+            assert!(
+                r.len() <= 4,
+                "{scheme}: {} iterations at crossing increment {inc}",
+                r.len() - 1
+            );
+            assert!(
+                r[1] < 1e-4 * r[0],
+                "{scheme}: first correction reduced ‖R‖ only to {:.1e}",
+                r[1] / r[0]
+            );
         }
     }
 }

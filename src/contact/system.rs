@@ -357,7 +357,10 @@ fn crossing_record(
     let pair = &cfg.model.contacts[ip];
     let slave = pair.slaves[is];
     let ga = cfg.segment(pair, a);
-    let (rho_a, _) = ga.eval(old.xi);
+    let (rho_a, rho1_a) = ga.eval(old.xi);
+    let rho1_b = e.proj.rho1;
+    let kink_angle =
+        (rho1_a[0] * rho1_b[1] - rho1_a[1] * rho1_b[0]).atan2(rho1_a[0] * rho1_b[0] + rho1_a[1] * rho1_b[1]);
     // A extended: same-segment trial on A's line at the current slave position
     let mut slots = Slots { nodes: Vec::new() };
     let rs = cfg.slave_pos(slave);
@@ -401,6 +404,7 @@ fn crossing_record(
         xi_from_extended: ext.proj.xi,
         delta_rho: [e.proj.rho[0] - rho_a[0], e.proj.rho[1] - rho_a[1]],
         direction: path.direction,
+        kink_angle,
         trial_before: ext.t1_trial / ext.proj.a11.sqrt(),
         trial_after: e.t1_trial / e.proj.a11.sqrt(),
         returned_after: e.t1 / e.proj.a11.sqrt(),

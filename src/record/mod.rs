@@ -229,6 +229,8 @@ pub struct CrossingRecord {
     pub delta_rho: [f64; 2],
     /// +1 forward along the chain, −1 backward.
     pub direction: i8,
+    /// Angle between the unit tangents of `A` and `B` (radians, signed, current configuration).
+    pub kink_angle: f64,
     /// Trial traction on `A` extended (same-segment formula), along `A`'s unit tangent.
     #[serde(with = "Real")]
     pub trial_before: f64,

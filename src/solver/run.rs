@@ -175,7 +175,8 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
             match res {
                 Ok(c) => break (trial, c, t_new),
                 Err(f) => {
-                    if attempt >= st.max_cutbacks {
+                    // the step may not fall below nominal / 2^max_cutbacks, however it got there
+                    if attempt >= st.max_cutbacks || dt * 0.5 < nominal * 0.5f64.powi(st.max_cutbacks as i32) {
                         return Err(SolveError::StepFailed {
                             increment,
                             t: t_new,

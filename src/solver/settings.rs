@@ -11,7 +11,8 @@ pub struct Stepping {
     pub end: f64,
     /// Number of nominal increments (nominal step `end / increments`).
     pub increments: usize,
-    /// How many times one increment may be halved before the run fails.
+    /// How many times one increment may be halved before the run fails; the step never falls
+    /// below `end / increments / 2^max_cutbacks`.
     pub max_cutbacks: usize,
     /// Step growth factor after `grow_after` consecutive converged increments (back toward the
     /// nominal step, never beyond it).
