@@ -1,0 +1,177 @@
+//! The seed's benchmark (Konyukhov & Schweizerhof 2006, §4, Figs. 2–4): an elastic strip
+//! drawn into a channel over the sharp corner C of a rigid block.
+//!
+//! ```text
+//!   x = 0 (symmetry, u_x = 0; u_y = −v)        C (6.5, 0)
+//!   |==================================== strip 12 × 0.5, 24 EAS elements
+//!   |                                  ●━━━━━━━━━━━ block B1 (x ≥ 6.5, y ≤ 0)
+//!   |          channel                 ┃ wall (rigid analytic surface)
+//! ```
+//! E = 2.1e4, ν = 0.3 (St. Venant–Kirchhoff), Δv = 0.0025 fixed (4400 increments to v = 11,
+//! no cut-backs), ε_N = ε_T = 2.1e5, μ = 0, 0.1, 0.2, 0.3.
+//! Reference (seed): with continuous transfer the full curve is obtained, including its
+//! straight part once the strip is inside; the straightforward transfer fails to converge
+//! for frictional runs at a crossing. Asserted here as measured:
+//! - continuous and path-length reach v = 11 for every μ, C crosses all 11 segment
+//!   boundaries, the strip end ends inside the channel (x < 6.5 + 1e-3, y < −0.5), no strip node goes below
+//!   the block's top (x > 6.5 + 1e-3, y < −1e-3), the peak force grows with μ, and the force is
+//!   constant (range < 1e-6 of the peak) over the straight part v ∈ [10, 11];
+//! - straightforward with μ > 0 stops with a non-converged increment while C sits at a
+//!   segment boundary (|ξ| > 0.95) after trial jumps of ≈ ε_T ℓ (within 10 %) at its crossings;
+//!   frictionless, it is identical to the continuous run (no tangential history to transfer);
+//! - Newton's observed order (energy norm, last three iterates) at the crossing increments of
+//!   the continuous μ = 0.2 run is ≥ 1.8 in the median, and so it is over the increments in
+//!   which C slips.
+
+mod common;
+
+use contrail::contact::law::ContactState;
+use contrail::record::{Memory, Outcome};
+use contrail::solver::newton::observed_orders;
+
+const EPS_T: f64 = 2.1e5;
+const SEGMENT: f64 = 0.5;
+
+fn run(mu: f64, scheme: &str) -> Memory {
+    let m = common::scene(
+        "strip-channel",
+        &[&format!("contact.mu={mu}"), &format!("contact.transfer={scheme}")],
+    );
+    common::solve(&m).1
+}
+
+fn curve(mem: &Memory) -> Vec<(f64, f64)> {
+    mem.increments
+        .iter()
+        .filter_map(|i| i.monitor.as_ref().map(|m| (m.displacement, m.force)))
+        .collect()
+}
+
+fn check_complete(mu: f64, scheme: &str) -> f64 {
+    let mem = run(mu, scheme);
+    assert!(
+        matches!(mem.outcome, Some(Outcome::Completed { .. })),
+        "{scheme} μ={mu}: {:?}",
+        mem.outcome
+    );
+    assert_eq!(mem.crossings.len(), 11, "{scheme} μ={mu}: C crosses every boundary");
+    // the strip's end (node 24 at the bottom, 49 at the top) is inside the channel, below C
+    // (the bottom end node slides on the wall: x = 6.5 + its penalty penetration)
+    for n in [24usize, 49] {
+        let (x, y) = (12.0 + mem.final_u[2 * n], [0.0, 0.5][n / 25] + mem.final_u[2 * n + 1]);
+        assert!(
+            x < 6.5 + 1e-3 && y < -0.5,
+            "{scheme} μ={mu}: node {n} ends at ({x}, {y})"
+        );
+    }
+    // the strip never dips into the block's top (which is not a contact surface)
+    for pts in &mem.contact {
+        for p in pts.iter().filter(|p| p.pair == 1) {
+            assert!(
+                !(p.position[0] > 6.5 + 1e-3 && p.position[1] < -1e-3),
+                "{scheme} μ={mu}: {} at {:?}",
+                p.slave_label,
+                p.position
+            );
+        }
+    }
+    let c = curve(&mem);
+    let (v_peak, f_peak) = c
+        .iter()
+        .copied()
+        .fold((0.0, f64::MIN), |a, b| if b.1 > a.1 { b } else { a });
+    let tail: Vec<f64> = c.iter().filter(|p| p.0 >= 10.0).map(|p| p.1).collect();
+    let plateau = tail.iter().sum::<f64>() / tail.len() as f64;
+    let range = tail.iter().fold(f64::MIN, |a, b| a.max(*b)) - tail.iter().fold(f64::MAX, |a, b| a.min(*b));
+    println!("{scheme} μ = {mu}: peak {f_peak:.4} at v = {v_peak:.4}, plateau {plateau:.5} (range {range:.1e})");
+    assert!(
+        range < 1e-6 * f_peak,
+        "{scheme} μ={mu}: the straight part is not straight (range {range})"
+    );
+    f_peak
+}
+
+#[test]
+fn strip_channel_continuous_reaches_full_insertion_for_every_friction_coefficient() {
+    let peaks: Vec<f64> = [0.0, 0.1, 0.2, 0.3]
+        .iter()
+        .map(|&mu| check_complete(mu, "continuous"))
+        .collect();
+    assert!(
+        peaks.windows(2).all(|w| w[1] > w[0]),
+        "peak force grows with μ: {peaks:?}"
+    );
+}
+
+#[test]
+fn strip_channel_path_length_reaches_full_insertion() {
+    check_complete(0.2, "path-length");
+}
+
+#[test]
+fn strip_channel_straightforward_fails_at_a_crossing_when_frictional() {
+    for mu in [0.1, 0.2, 0.3] {
+        let mem = run(mu, "straightforward");
+        let Some(Outcome::Failed { increment, t, .. }) = &mem.outcome else {
+            panic!("μ = {mu}: expected a failed run, got {:?}", mem.outcome);
+        };
+        let corner = &mem.contact.last().unwrap()[0];
+        println!(
+            "straightforward μ = {mu}: fails at increment {increment} (v = {:.4}), C on segment {:?} at ξ = {:.4}, after {} crossings",
+            11.0 * t,
+            corner.segment,
+            corner.xi,
+            mem.crossings.len()
+        );
+        assert!(corner.xi.abs() > 0.95, "C is at a segment boundary");
+        assert!(!mem.crossings.is_empty());
+        for (_, c) in &mem.crossings {
+            let jump = (c.trial_after - c.trial_before).abs();
+            assert!((jump / (EPS_T * SEGMENT) - 1.0).abs() < 0.1, "trial jump {jump:e}");
+        }
+    }
+    let a = curve(&run(0.0, "straightforward"));
+    let b = curve(&run(0.0, "continuous"));
+    assert_eq!(a.len(), b.len());
+    assert!(a
+        .iter()
+        .zip(&b)
+        .all(|(p, q)| (p.1 - q.1).abs() <= 1e-10 * (1.0 + q.1.abs())));
+}
+
+fn median_order(mem: &Memory, increments: &[usize]) -> f64 {
+    let mut orders: Vec<f64> = increments
+        .iter()
+        .filter_map(|&k| {
+            let e: Vec<f64> = mem
+                .iterations
+                .iter()
+                .filter(|it| it.increment == k && it.energy > 1e-24)
+                .map(|it| it.energy)
+                .collect();
+            observed_orders(&e, 0.0).last().copied()
+        })
+        .collect();
+    orders.sort_by(f64::total_cmp);
+    orders[orders.len() / 2]
+}
+
+#[test]
+fn strip_channel_newton_order_at_crossings_and_in_slip() {
+    let mem = run(0.2, "continuous");
+    let crossing: Vec<usize> = mem.crossings.iter().map(|(k, _)| *k).collect();
+    let slip: Vec<usize> = mem
+        .increments
+        .iter()
+        .zip(&mem.contact)
+        .filter(|(_, pts)| pts[0].state == ContactState::Slip)
+        .map(|(i, _)| i.increment)
+        .collect();
+    let (pc, ps) = (median_order(&mem, &crossing), median_order(&mem, &slip));
+    println!(
+        "median observed order: {pc:.2} at {} crossings, {ps:.2} over {} slip increments",
+        crossing.len(),
+        slip.len()
+    );
+    assert!(pc >= 1.8 && ps >= 1.8);
+}
