@@ -26,14 +26,21 @@ cargo build --locked --quiet
 BIN="$CARGO_TARGET_DIR/debug/contrail"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
-"$BIN" run crossing --quiet --out "$TMP/crossing.mcap" --rerun-save "$TMP/crossing.rrd"
-"$BIN" run strip-channel --quiet --set stepping.end=0.05 --set stepping.increments=220 \
+# a run that fails (exit 1) still leaves a complete recording; anything else is an error
+record() {
+    local rc=0
+    "$BIN" run "$@" >"$TMP/run.log" 2>&1 || rc=$?
+    if [ "$rc" -gt 1 ]; then
+        echo "contrail run $* exited with $rc"; cat "$TMP/run.log"; exit 1
+    fi
+    return 0
+}
+record crossing --quiet --out "$TMP/crossing.mcap" --rerun-save "$TMP/crossing.rrd"
+record strip-channel --quiet --set stepping.end=0.05 --set stepping.increments=220 \
     --positions-every 10 --out "$TMP/strip.mcap" --rerun-save "$TMP/strip.rrd"
-set +e
+rc=0
 "$BIN" run strip-channel --quiet --set solver.max_iterations=1 --set stepping.max_cutbacks=0 \
-    --out "$TMP/failed.mcap" >"$TMP/failed.log" 2>&1
-rc=$?
-set -e
+    --out "$TMP/failed.mcap" >"$TMP/failed.log" 2>&1 || rc=$?
 if [ "$rc" -ne 1 ]; then
     echo "a run meant to fail exited with $rc"; cat "$TMP/failed.log"; exit 1
 fi

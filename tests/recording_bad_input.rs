@@ -34,7 +34,9 @@ fn recording(scene: &str, sets: &[&str], file: &str) -> String {
             args.extend(["--set", s]);
         }
         let out = contrail(&args);
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        // a run that fails (exit 1) still leaves a complete recording
+        let code = out.status.code();
+        assert!(matches!(code, Some(0 | 1)), "{}", String::from_utf8_lossy(&out.stderr));
         std::fs::rename(&tmp, &path).unwrap();
     }
     path.to_str().unwrap().to_string()
@@ -138,13 +140,10 @@ fn diff_exits_0_within_tolerance_and_1_beyond() {
     let out = contrail(&["diff", &a, &a]);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
     assert!(String::from_utf8_lossy(&out.stdout).contains("within tolerance"));
-    let b = recording(
-        "crossing",
-        &["contact.transfer=straightforward"],
-        "crossing-straightforward.mcap",
-    );
-    let svg = dir().join("xi.svg");
-    let out = contrail(&["diff", &a, &b, "--plot", svg.to_str().unwrap(), "--field", "xi"]);
+    let a = recording("block-slide", &[], "block-slide.mcap");
+    let b = recording("block-slide", &["contact.mu=0.2"], "block-slide-mu.mcap");
+    let svg = dir().join("traction.svg");
+    let out = contrail(&["diff", &a, &b, "--plot", svg.to_str().unwrap(), "--field", "traction"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert_eq!(
         out.status.code(),
@@ -172,8 +171,10 @@ fn diff_exits_0_within_tolerance_and_1_beyond() {
 #[test]
 fn ctrl_c_leaves_a_complete_recording_and_exit_code_130() {
     let out = dir().join("interrupted.mcap");
-    let child = Command::new(env!("CARGO_BIN_EXE_contrail"))
-        .args(["run", "strip-channel", "--quiet", "--out", out.to_str().unwrap()])
+    // block-slide with a million increments runs for minutes unless stopped
+    let mut child = Command::new(env!("CARGO_BIN_EXE_contrail"))
+        .args(["run", "block-slide", "--quiet", "--set", "stepping.increments=1000000"])
+        .args(["--out", out.to_str().unwrap()])
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -189,6 +190,14 @@ fn ctrl_c_leaves_a_complete_recording_and_exit_code_130() {
         .status()
         .unwrap();
     assert!(kill.success());
+    let t1 = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if t1.elapsed().as_secs() > 60 {
+            let _ = child.kill();
+            panic!("contrail did not stop within 60 s of Ctrl-C");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
     let res = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&res.stderr);
     let code = res.status.code();

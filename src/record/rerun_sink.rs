@@ -41,7 +41,7 @@ pub enum RerunError {
     Spawn(String),
     #[error("rerun: `{url}` is not a viewer address: {message}\n  hint: e.g. rerun+http://127.0.0.1:9876/proxy")]
     Url { url: String, message: String },
-    #[error("rerun: {0}")]
+    #[error("{0}")]
     Stream(String),
 }
 
