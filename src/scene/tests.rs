@@ -62,3 +62,16 @@ fn missing_file_is_a_clear_error() {
     let e = SceneSource::resolve("/no/such/scene.toml").unwrap_err().to_string();
     assert!(e.starts_with("/no/such/scene.toml: cannot read"), "{e}");
 }
+
+/// `schemas/scene.schema.json` is generated from the scene types; refresh it on purpose with
+/// `CONTRAIL_BLESS=1 cargo test --lib scene_schema` (or `contrail schema > schemas/scene.schema.json`).
+#[test]
+fn scene_schema_file_matches_the_types() {
+    let generated = serde_json::to_string_pretty(&schemars::schema_for!(SceneFile)).unwrap() + "\n";
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/schemas/scene.schema.json");
+    if std::env::var_os("CONTRAIL_BLESS").is_some() {
+        std::fs::write(path, &generated).unwrap();
+    }
+    let on_disk = std::fs::read_to_string(path).unwrap_or_default();
+    assert!(on_disk == generated, "schemas/scene.schema.json is stale: run CONTRAIL_BLESS=1 cargo test --lib scene_schema");
+}
