@@ -36,7 +36,7 @@ record() {
     return 0
 }
 record crossing --quiet --out "$TMP/crossing.mcap" --rerun-save "$TMP/crossing.rrd"
-record strip-channel --quiet --set stepping.end=0.05 --set stepping.increments=220 \
+record strip-channel --quiet --set fix.1.value=-0.55 --set stepping.increments=220 \
     --positions-every 10 --out "$TMP/strip.mcap" --rerun-save "$TMP/strip.rrd"
 rc=0
 "$BIN" run strip-channel --quiet --set solver.max_iterations=1 --set stepping.max_cutbacks=0 \

@@ -16,7 +16,7 @@ struct Nothing;
 impl Observer for Nothing {}
 
 fn strip() -> (Model, RunInfo) {
-    let sets = vec!["stepping.end=0.05".to_string(), "stepping.increments=220".to_string()];
+    let sets = vec!["fix.1.value=-0.55".to_string(), "stepping.increments=220".to_string()];
     let (src, model) = contrail::load_scene("strip-channel", &sets).expect("strip-channel");
     let info = contrail::run_info(&src, &sets, &model);
     (model, info)
@@ -32,7 +32,7 @@ fn bench(c: &mut Criterion) {
     let (model, info) = strip();
     let stop = AtomicBool::new(false);
     let dir = out_dir();
-    let mut g = c.benchmark_group("strip-channel (t to 0.05, 220 increments)");
+    let mut g = c.benchmark_group("strip-channel (v to 0.55 in 220 increments)");
     g.sample_size(10);
     g.bench_function("solve", |b| {
         b.iter(|| contrail::solver::run(&model, &info, &mut Nothing, &stop).map(|s| s.increments))

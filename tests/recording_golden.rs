@@ -95,7 +95,7 @@ fn short_strip_channel_matches_its_golden_trace() {
     check(
         "strip-channel",
         "strip-channel",
-        &["stepping.end=0.05", "stepping.increments=220"],
+        &["fix.1.value=-0.55", "stepping.increments=220"],
         20,
     );
 }

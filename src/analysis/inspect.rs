@@ -187,7 +187,10 @@ pub fn render(s: &InspectReport) -> String {
     );
     row(
         "newton",
-        format!("{} iterations, {} cut-backs", s.newton_iterations, s.cutbacks),
+        format!(
+            "{} iterations (failed attempts included), {} cut-backs",
+            s.newton_iterations, s.cutbacks
+        ),
     );
     row("ended", s.status.clone());
     if !s.stopped.is_empty() {

@@ -230,6 +230,7 @@ pub struct CrossingRecord {
     /// +1 forward along the chain, −1 backward.
     pub direction: i8,
     /// Angle between the unit tangents of `A` and `B` (radians, signed, current configuration).
+    #[serde(with = "Real")]
     pub kink_angle: f64,
     /// Trial traction on `A` extended (same-segment formula), along `A`'s unit tangent.
     #[serde(with = "Real")]
