@@ -38,6 +38,7 @@ pub fn line_chart(path: &Path, title: &str, x_label: &str, y_label: &str, series
         message: m,
     };
     let size = (1100, 700);
+    register_font(); // both backends measure text with the registered font
     match path.extension().and_then(|e| e.to_str()) {
         Some("svg") => draw(
             SVGBackend::new(path, size).into_drawing_area(),
