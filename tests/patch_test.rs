@@ -31,8 +31,8 @@ fn patch(material: &str, element: &str) {
     m.nodes[4] = [1.25, 0.8];
     for n in [0, 1, 2, 3, 5, 6, 7, 8] {
         let x = m.nodes[n];
-        for c in 0..2 {
-            let u = H[c][0] * x[0] + H[c][1] * x[1];
+        for (c, h) in H.iter().enumerate() {
+            let u = h[0] * x[0] + h[1] * x[1];
             m.prescribed.push(Prescribed {
                 dof: 2 * n + c,
                 ramp: Ramp::linear(u, 1.0),
@@ -42,8 +42,8 @@ fn patch(material: &str, element: &str) {
     let (_, mem) = common::solve_ok(&m);
     let u = &mem.final_u;
     let x4 = m.nodes[4];
-    for c in 0..2 {
-        let exact = H[c][0] * x4[0] + H[c][1] * x4[1];
+    for (c, h) in H.iter().enumerate() {
+        let exact = h[0] * x4[0] + h[1] * x4[1];
         assert!(
             (u[8 + c] - exact).abs() < 1e-10 * exact.abs(),
             "{material}/{element}: u4[{c}] = {} vs {exact}",

@@ -105,9 +105,9 @@ impl SparseMatrix {
     /// `y = A x`.
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
-        for c in 0..self.n {
+        for (c, xc) in x.iter().enumerate().take(self.n) {
             for k in self.col_ptr[c]..self.col_ptr[c + 1] {
-                y[self.row_idx[k]] += self.values[k] * x[c];
+                y[self.row_idx[k]] += self.values[k] * xc;
             }
         }
     }

@@ -79,7 +79,7 @@ mod tests {
         let (t, s) = return_map(&law, -3.0, 2.0, 4.0);
         assert_eq!(s, ContactState::Slip);
         // |T| = |T_1|/sqrt(a11) = μ N
-        assert!(((t as f64).abs() / 2.0 - 1.0).abs() < 1e-15 && t < 0.0);
+        assert!((t.abs() / 2.0 - 1.0).abs() < 1e-15 && t < 0.0);
         let law0 = ContactLaw { mu: 0.0, ..law };
         assert_eq!(return_map(&law0, 5.0, 1.0, 1.0).0, 0.0);
     }

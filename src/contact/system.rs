@@ -54,6 +54,9 @@ pub struct ContactSystem {
     pub current: Vec<Vec<PointNow>>,
 }
 
+/// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
+pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64]) + 'a;
+
 /// Node positions and time the contact evaluation works on.
 pub struct Config<'a> {
     pub model: &'a Model,
@@ -90,7 +93,7 @@ impl Config<'_> {
                 let RigidShape::Surface { pieces } = &b.shape else {
                     unreachable!("validated")
                 };
-                (SegSource::Rigid(pieces[k].clone(), b.offset(self.t)), None)
+                (SegSource::Rigid(pieces[k], b.offset(self.t)), None)
             }
         }
     }
@@ -194,7 +197,7 @@ impl ContactSystem {
 
     /// Locate and evaluate every slave point; for each closed point call
     /// `assemble(nodes, r, k)` with its local residual (`2·nodes.len()`) and tangent.
-    pub fn evaluate(&mut self, cfg: &Config, assemble: &mut dyn FnMut(&[usize], &[f64], &[f64])) {
+    pub fn evaluate(&mut self, cfg: &Config, assemble: &mut LocalSink) {
         let mut r = [0.0; 2 * MAX_NODES];
         let mut k = [0.0; 4 * MAX_NODES * MAX_NODES];
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {

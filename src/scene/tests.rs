@@ -73,5 +73,8 @@ fn scene_schema_file_matches_the_types() {
         std::fs::write(path, &generated).unwrap();
     }
     let on_disk = std::fs::read_to_string(path).unwrap_or_default();
-    assert!(on_disk == generated, "schemas/scene.schema.json is stale: run CONTRAIL_BLESS=1 cargo test --lib scene_schema");
+    assert!(
+        on_disk == generated,
+        "schemas/scene.schema.json is stale: run CONTRAIL_BLESS=1 cargo test --lib scene_schema"
+    );
 }
