@@ -30,13 +30,17 @@ fn bench(c: &mut Criterion) {
             st.u[p.dof] = 0.0;
         }
         g.bench_with_input(BenchmarkId::new("assemble", dofs), &dofs, |b, _| {
-            b.iter(|| asm.assemble(&m, &st.u, 0.5, &mut st.alphas, &mut st.contact, true).unwrap())
+            b.iter(|| {
+                asm.assemble(&m, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
+                    .unwrap()
+            })
         });
         let n = asm.dofs.n_free;
         let mut r = vec![0.0; n];
         g.bench_with_input(BenchmarkId::new("newton-iteration", dofs), &dofs, |b, _| {
             b.iter(|| {
-                asm.assemble(&m, &st.u, 0.5, &mut st.alphas, &mut st.contact, true).unwrap();
+                asm.assemble(&m, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
+                    .unwrap();
                 asm.free_residual(&mut r);
                 asm.matrix.solve(&mut r).unwrap();
             })

@@ -45,6 +45,17 @@ fn bench(c: &mut Criterion) {
             contrail::solver::run(&model, &info, &mut sink, &stop).map(|s| s.increments)
         })
     });
+    g.bench_function("solve + mcap, no compression", |b| {
+        b.iter(|| {
+            let file = BufWriter::new(std::fs::File::create(&mcap).expect("create"));
+            let opts = McapOptions {
+                compress: false,
+                ..McapOptions::default()
+            };
+            let mut sink = McapSink::new(file, "bench.mcap", opts).expect("mcap");
+            contrail::solver::run(&model, &info, &mut sink, &stop).map(|s| s.increments)
+        })
+    });
     let rrd = dir.join("bench.rrd");
     g.bench_function("solve + rerun file", |b| {
         b.iter(|| {
