@@ -1,7 +1,9 @@
 //! Cost of recording: the shortened strip-channel scene solved with no sink, with the MCAP
 //! recorder (file, positions every increment) and with the rerun file sink.
 //!
-//! `cargo bench --bench recording_overhead`
+//! `cargo bench --bench recording_overhead`. On a busy 2-core machine wall times are noisy;
+//! pinning to one core (`RAYON_NUM_THREADS=1 taskset -c 1 target/release/deps/recording_overhead-* --bench`)
+//! counts the compression and batcher threads in full and gives steadier ratios.
 
 use contrail::model::Model;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
