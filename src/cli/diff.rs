@@ -155,7 +155,6 @@ pub fn diff(a: DiffArgs) -> anyhow::Result<ExitCode> {
             Align::Increment => "increment",
             Align::Load => "load level t",
         };
-        register_font();
         line_chart(path, &title, x, &a.field, &series).map_err(|e| BadInput(e.to_string()))?;
     }
     if a.json {
@@ -171,17 +170,6 @@ pub fn diff(a: DiffArgs) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
-}
-
-/// plotters lays out SVG text with a registered font too, and `analysis::plot` registers its
-/// embedded font only for PNG output; register it here so `--plot FILE.svg` works on machines
-/// without system fonts.
-fn register_font() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let font: &'static [u8] = include_bytes!("../../assets/DejaVuSans.ttf");
-        let _ = plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, font);
-    });
 }
 
 /// The point (pair, slave) of the first divergence of a contact field.
