@@ -132,6 +132,53 @@ impl Slots {
     }
 }
 
+fn stored(h: &PointHistory) -> StoredTraction {
+    StoredTraction {
+        xi: h.xi,
+        t1: h.t1,
+        a11: h.a11,
+    }
+}
+
+/// The local problem of one slave point on segment `b`, with the history `(stored, A, path)`
+/// of a point that was closed at the last converged increment; returns it with the global
+/// nodes of its slots.
+fn local_problem(
+    cfg: &Config,
+    pair: &ContactPair,
+    slave: Slave,
+    b: usize,
+    closed: Option<(StoredTraction, usize, Path)>,
+) -> (PointProblem, Slots) {
+    let mut slots = Slots {
+        nodes: Vec::with_capacity(MAX_NODES),
+    };
+    let slave_src = match slave {
+        Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
+        Slave::RigidPoint(_) => SlaveSource::Fixed(cfg.slave_pos(slave)),
+    };
+    let seg_b = slots.source(cfg, pair, b);
+    let closed = closed.map(|(stored, a, path)| Closed {
+        stored,
+        seg_a: slots.source(cfg, pair, a),
+        path,
+    });
+    let mut x = [[0.0; 2]; MAX_NODES];
+    for (i, &n) in slots.nodes.iter().enumerate() {
+        x[i] = cfg.node(n);
+    }
+    let problem = PointProblem {
+        law: pair.law,
+        scheme: pair.transfer,
+        x,
+        n_nodes: slots.nodes.len(),
+        slave: slave_src,
+        seg_b,
+        closed,
+    };
+    (problem, slots)
+}
+
 /// Path from `a` to `b` along the chain (direction and length of the segments between).
 fn path_between(cfg: &Config, pair: &ContactPair, a: usize, b: usize) -> Path {
     if a == b {
@@ -230,43 +277,14 @@ impl ContactSystem {
                 if loc.xi.abs() > 1.0 + XI_TOL {
                     continue; // past a free end or in a convex-vertex gap: open
                 }
-                let mut slots = Slots {
-                    nodes: Vec::with_capacity(MAX_NODES),
-                };
-                let slave_src = match slave {
-                    Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
-                    Slave::RigidPoint(_) => SlaveSource::Fixed(rs),
-                };
-                let seg_b = slots.source(cfg, pair, loc.segment);
                 let closed = match (hist.closed, hist.segment) {
                     (true, Some(a)) => {
-                        let path = path_between(cfg, pair, a, loc.segment);
-                        now.path = path;
-                        Some(Closed {
-                            stored: StoredTraction {
-                                xi: hist.xi,
-                                t1: hist.t1,
-                                a11: hist.a11,
-                            },
-                            seg_a: slots.source(cfg, pair, a),
-                            path,
-                        })
+                        now.path = path_between(cfg, pair, a, loc.segment);
+                        Some((stored(&hist), a, now.path))
                     }
                     _ => None,
                 };
-                let mut x = [[0.0; 2]; MAX_NODES];
-                for (i, &n) in slots.nodes.iter().enumerate() {
-                    x[i] = cfg.node(n);
-                }
-                let problem = PointProblem {
-                    law: pair.law,
-                    scheme: pair.transfer,
-                    x,
-                    n_nodes: slots.nodes.len(),
-                    slave: slave_src,
-                    seg_b,
-                    closed,
-                };
+                let (problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
                 let nd = 2 * slots.nodes.len();
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);
@@ -365,38 +383,12 @@ fn crossing_record(
     let kink_angle =
         (rho1_a[0] * rho1_b[1] - rho1_a[1] * rho1_b[0]).atan2(rho1_a[0] * rho1_b[0] + rho1_a[1] * rho1_b[1]);
     // A extended: same-segment trial on A's line at the current slave position
-    let mut slots = Slots { nodes: Vec::new() };
-    let rs = cfg.slave_pos(slave);
-    let slave_src = match slave {
-        Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
-        Slave::RigidPoint(_) => SlaveSource::Fixed(rs),
+    let same = Path {
+        direction: 0,
+        between: 0.0,
     };
-    let seg_a = slots.source(cfg, pair, a);
-    let mut x = [[0.0; 2]; MAX_NODES];
-    for (i, &n) in slots.nodes.iter().enumerate() {
-        x[i] = cfg.node(n);
-    }
-    let ext = PointProblem {
-        law: pair.law,
-        scheme: pair.transfer,
-        x,
-        n_nodes: slots.nodes.len(),
-        slave: slave_src,
-        seg_b: seg_a,
-        closed: Some(Closed {
-            stored: StoredTraction {
-                xi: old.xi,
-                t1: old.t1,
-                a11: old.a11,
-            },
-            seg_a,
-            path: Path {
-                direction: 0,
-                between: 0.0,
-            },
-        }),
-    }
-    .evaluate_f64();
+    let (ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same)));
+    let ext = ext.evaluate_f64();
     CrossingRecord {
         pair: ip,
         slave: is,

@@ -101,7 +101,6 @@ pub fn solve_increment(
         }
         e_last = energy;
         let mut step = 1.0;
-        let u0 = state.u.clone();
         apply(&mut state.u, &asm.dofs.eq, &du, step);
         if settings.line_search {
             // backtrack on ‖R‖ (residual-only assemblies)
@@ -112,9 +111,9 @@ pub fn solve_increment(
                 if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
                     break;
                 }
+                // take back half of the current step (no copy of u on the hot path)
+                apply(&mut state.u, &asm.dofs.eq, &du, -0.5 * step);
                 step *= 0.5;
-                state.u.copy_from_slice(&u0);
-                apply(&mut state.u, &asm.dofs.eq, &du, step);
             }
         }
         let sig = state.contact.signature();
