@@ -104,3 +104,23 @@ fn crossing_straightforward_jumps_as_predicted() {
         assert!(jump.abs() > 0.5 * EPS_T * lb, "the jump is of the order ε_T ℓ_B");
     }
 }
+
+/// Refining the step must not make a converged state fail on round-off (issue 7): the
+/// scene at 100, 500 and 2000 increments, every scheme, completes with its three crossings.
+#[test]
+fn crossing_completes_at_every_step_size() {
+    for n in [100, 500, 2000] {
+        for scheme in ["continuous", "path-length", "straightforward"] {
+            let m = common::scene(
+                "crossing",
+                &[&format!("stepping.increments={n}"), &format!("contact.transfer={scheme}")],
+            );
+            let (s, mem) = common::solve_ok(&m);
+            assert_eq!(mem.crossings.len(), 3, "{scheme}, {n} increments");
+            println!(
+                "{scheme}, {n} increments: {} Newton iterations, {} cut-backs",
+                s.newton_iterations, s.cutbacks
+            );
+        }
+    }
+}

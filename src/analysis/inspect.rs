@@ -65,6 +65,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
             t,
             reason,
             residuals,
+            ..
         }) => (
             "failed".into(),
             format!(

@@ -60,6 +60,8 @@ pub struct Assembler {
     elem_slots: Vec<[u32; 64]>,
     /// Full residual `f_int + f_contact − f_ext` over all DOFs (reactions at prescribed DOFs).
     pub r_full: Vec<f64>,
+    /// Sum of the absolute element and contact contributions per DOF (round-off scale).
+    r_abs: Vec<f64>,
     /// Stored energy of the elements at the last assembly.
     pub energy: f64,
     missing: Vec<(usize, usize)>,
@@ -87,6 +89,7 @@ impl Assembler {
             matrix,
             elem_slots: Vec::new(),
             r_full: vec![0.0; model.dof_count()],
+            r_abs: vec![0.0; model.dof_count()],
             energy: 0.0,
             missing: Vec::new(),
         };
@@ -126,6 +129,7 @@ impl Assembler {
     ) -> Result<(), AssemblyError> {
         loop {
             self.r_full.fill(0.0);
+            self.r_abs.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
             let mut re = [0.0; 8];
@@ -140,6 +144,8 @@ impl Assembler {
                 for (i, &n) in el.nodes.iter().enumerate() {
                     self.r_full[2 * n] += re[2 * i];
                     self.r_full[2 * n + 1] += re[2 * i + 1];
+                    self.r_abs[2 * n] += re[2 * i].abs();
+                    self.r_abs[2 * n + 1] += re[2 * i + 1].abs();
                 }
                 if with_tangent {
                     for (s, v) in self.elem_slots[ie].iter().zip(ke.iter()) {
@@ -151,12 +157,19 @@ impl Assembler {
             }
             self.missing.clear();
             let cfg = Config { model, u, t };
-            let (r_full, matrix, missing, dofs) = (&mut self.r_full, &mut self.matrix, &mut self.missing, &self.dofs);
+            let (r_full, r_abs, matrix, missing, dofs) = (
+                &mut self.r_full,
+                &mut self.r_abs,
+                &mut self.matrix,
+                &mut self.missing,
+                &self.dofs,
+            );
             contact.evaluate(&cfg, &mut |nodes, r, k| {
                 let nd = 2 * nodes.len();
                 let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
                 for i in 0..nd {
                     r_full[dof(i)] += r[i];
+                    r_abs[dof(i)] += r[i].abs();
                 }
                 if !with_tangent {
                     return;
@@ -181,9 +194,25 @@ impl Assembler {
             self.build_slots(model);
         }
         for l in &model.loads {
-            self.r_full[l.dof] -= l.ramp.at(t);
+            let f = l.ramp.at(t);
+            self.r_full[l.dof] -= f;
+            self.r_abs[l.dof] += f.abs();
         }
         Ok(())
+    }
+
+    /// Round-off level of the free residual: `1e-13 ‖Σ|r_e|‖` over the free DOFs, the
+    /// norm of the summed absolute contributions (a residual below it is noise).
+    pub fn roundoff(&self) -> f64 {
+        let s: f64 = self
+            .dofs
+            .eq
+            .iter()
+            .zip(&self.r_abs)
+            .filter(|(e, _)| e.is_some())
+            .map(|(_, a)| a * a)
+            .sum();
+        1e-13 * s.sqrt()
     }
 
     /// Residual restricted to the free equations.

@@ -27,9 +27,10 @@ pub struct ContactLaw {
 }
 
 /// Contact state of a slave point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactState {
+    #[default]
     Open,
     Stick,
     Slip,
@@ -48,14 +49,25 @@ impl ContactState {
 /// Return mapping: the returned covariant traction `T_1` and the state, for a trial `T_1^tr`,
 /// normal force `N` and metric `a11` (seed §3, "standard return mapping").
 ///
-/// The branch is chosen on real parts; the returned value carries derivatives, so the
-/// tangent of the slip branch, `∂(μ N √a11 sign T^tr)`, is the consistent one.
-pub fn return_map<S: Scalar>(law: &ContactLaw, t1_trial: S, normal: S, a11: S) -> (S, ContactState) {
+/// The branch is chosen on real parts (or held at `forced` when the solver froze a
+/// chattering point); the returned value carries derivatives, so the tangent of the slip
+/// branch, `∂(μ N √a11 sign T^tr)`, is the consistent one.
+pub fn return_map<S: Scalar>(
+    law: &ContactLaw,
+    t1_trial: S,
+    normal: S,
+    a11: S,
+    forced: Option<ContactState>,
+) -> (S, ContactState) {
     if law.mu <= 0.0 {
         return (S::from(0.0), ContactState::Slip);
     }
     let norm_tr = t1_trial.re().abs() / a11.re().sqrt();
-    if norm_tr <= law.mu * normal.re() {
+    let stick = match forced {
+        Some(state) => state == ContactState::Stick,
+        None => norm_tr <= law.mu * normal.re(),
+    };
+    if stick {
         (t1_trial, ContactState::Stick)
     } else {
         let sign = if t1_trial.re() >= 0.0 { 1.0 } else { -1.0 };
@@ -74,13 +86,13 @@ mod tests {
             eps_t: 1.0,
             mu: 0.5,
         };
-        let (t, s) = return_map(&law, 0.4, 1.0, 1.0);
+        let (t, s) = return_map(&law, 0.4, 1.0, 1.0, None);
         assert_eq!((t, s), (0.4, ContactState::Stick));
-        let (t, s) = return_map(&law, -3.0, 2.0, 4.0);
+        let (t, s) = return_map(&law, -3.0, 2.0, 4.0, None);
         assert_eq!(s, ContactState::Slip);
         // |T| = |T_1|/sqrt(a11) = μ N
         assert!((t.abs() / 2.0 - 1.0).abs() < 1e-15 && t < 0.0);
         let law0 = ContactLaw { mu: 0.0, ..law };
-        assert_eq!(return_map(&law0, 5.0, 1.0, 1.0).0, 0.0);
+        assert_eq!(return_map(&law0, 5.0, 1.0, 1.0, None).0, 0.0);
     }
 }

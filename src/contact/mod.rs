@@ -2,6 +2,7 @@
 
 pub mod geometry;
 pub mod law;
+pub mod pairing;
 pub mod point;
 pub mod scalar;
 pub mod search;

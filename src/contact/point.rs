@@ -51,12 +51,22 @@ pub struct Path {
     pub between: f64,
 }
 
-/// History input of a point that was closed at the last converged increment.
+/// History input of a point that was closed at the last converged increment — or, with
+/// `touch_gap`, of a point that was open then and paired with segment `A` at `ξ_A`
+/// (`stored.t1 = 0`) with gap `ζ_A = touch_gap ≥ 0`.
+///
+/// First touch: the point closes during this increment at the fraction
+/// `s = ζ_A / (ζ_A − ζ)` of its way from the stored point to the current one (linear in the
+/// pseudo-time), so the anchor of stick is put there instead of at the increment's end:
+/// `T_1^tr = (1 − s) T_1^tr(ξ_A, T = 0)`, which on one segment is exactly
+/// `−ε_T a11 (ξ − ξ_touch)`, `ξ_touch = ξ_A + s (ξ − ξ_A)`. `s` depends on the current gap and
+/// is differentiated with everything else.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Closed {
     pub stored: StoredTraction,
     pub seg_a: SegSource,
     pub path: Path,
+    pub touch_gap: Option<f64>,
 }
 
 /// Local data of one contact point: everything the kernel sees.
@@ -72,6 +82,10 @@ pub struct PointProblem {
     /// `None` when the point was open at the last converged increment (no friction
     /// history: the first closing increment is frictionless, its end fixes the anchor).
     pub closed: Option<Closed>,
+    /// A state held fixed by the solver (a point that chattered within an increment):
+    /// `Open` ignores penetration, `Stick`/`Slip` keep the penalty active whatever the sign
+    /// of the gap and force that branch of the return mapping. `None`: decided by the data.
+    pub forced: Option<ContactState>,
 }
 
 /// Result of a point evaluation in scalar type `S`.
@@ -101,7 +115,11 @@ impl PointProblem {
         let gb = seg_geom(&self.seg_b, q);
         let proj = gb.project(rs);
         let zero = S::from(0.0);
-        if proj.gap.re() >= 0.0 {
+        let open = match self.forced {
+            Some(state) => state == ContactState::Open,
+            None => proj.gap.re() >= 0.0,
+        };
+        if open {
             return PointEval {
                 proj,
                 normal_force: zero,
@@ -112,10 +130,10 @@ impl PointProblem {
         }
         let normal_force = -proj.gap * self.law.eps_n;
         let Some(c) = self.closed else {
-            let state = if self.law.mu > 0.0 {
-                ContactState::Stick
-            } else {
-                ContactState::Slip
+            let state = match self.forced {
+                Some(state) => state,
+                None if self.law.mu > 0.0 => ContactState::Stick,
+                None => ContactState::Slip,
             };
             return PointEval {
                 proj,
@@ -149,8 +167,13 @@ impl PointProblem {
             arc_length,
             crossing: c.path.direction != 0,
         };
-        let t1_trial = self.scheme.trial(&input);
-        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11);
+        let mut t1_trial = self.scheme.trial(&input);
+        if let Some(g0) = c.touch_gap.filter(|g| *g > 0.0) {
+            // anchor at the point of first touch (see [`Closed`])
+            let penetration = -proj.gap;
+            t1_trial = t1_trial * (penetration / (penetration + g0)); // 1 − s = −ζ / (ζ_A − ζ)
+        }
+        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11, self.forced);
         PointEval {
             proj,
             normal_force,

@@ -32,7 +32,9 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
                 direction: 1,
                 between: 0.0,
             },
+            touch_gap: None,
         }),
+        forced: None,
     }
 }
 
@@ -99,6 +101,43 @@ fn same_segment_stick_slip_frictionless_and_first_closing_tangents_match_fd() {
 }
 
 #[test]
+fn first_touch_tangents_match_fd_and_anchor_at_the_touch_point() {
+    for scheme in [Straightforward, Continuous, PathLength] {
+        for (mu, state) in [(1e3, ContactState::Stick), (0.01, ContactState::Slip)] {
+            let mut p = base(scheme, ContactLaw { mu, ..LAW }, 0.0);
+            let c = p.closed.as_mut().unwrap();
+            c.touch_gap = Some(0.004);
+            fd_check(&p, state);
+            // forward crossing too (A = [3, 1], B = [1, 2]): same kernel, other path
+            let c = p.closed.as_mut().unwrap();
+            c.seg_a = SegSource::Face([1, 2]);
+            c.stored.xi = -0.1;
+            c.path = Path {
+                direction: 0,
+                between: 0.0,
+            };
+            fd_check(&p, state);
+        }
+    }
+    // on one segment the stick trial is exactly −ε_T a11 (ξ − ξ_touch)
+    let mut p = base(Continuous, ContactLaw { mu: 1e3, ..LAW }, 0.0);
+    let c = p.closed.as_mut().unwrap();
+    c.seg_a = SegSource::Face([1, 2]);
+    c.stored.xi = -0.1;
+    c.path = Path {
+        direction: 0,
+        between: 0.0,
+    };
+    let g0 = 0.004;
+    c.touch_gap = Some(g0);
+    let e = p.evaluate_f64();
+    let s = g0 / (g0 - e.proj.gap);
+    let xi_touch = -0.1 + s * (e.proj.xi + 0.1);
+    let expect = -LAW.eps_t * e.proj.a11 * (e.proj.xi - xi_touch);
+    assert!((e.t1_trial - expect).abs() < 1e-10 * expect.abs(), "{} vs {expect}", e.t1_trial);
+}
+
+#[test]
 fn backward_crossing_and_rigid_slave_tangents_match_fd() {
     for scheme in [Straightforward, Continuous, PathLength] {
         let mut p = base(scheme, ContactLaw { mu: 1e3, ..LAW }, -0.5);
@@ -151,7 +190,9 @@ fn rigid_arc_master_tangent_matches_fd() {
                 direction: 0,
                 between: 0.0,
             },
+            touch_gap: None,
         }),
+        forced: None,
     };
     fd_check(&p, ContactState::Stick);
     p.law.mu = 0.01;
@@ -200,7 +241,9 @@ fn slave_force_is_normal_push_plus_traction() {
                 direction: 0,
                 between: 0.0,
             },
+            touch_gap: None,
         }),
+        forced: None,
     };
     let mut r = [0.0; 2];
     let mut k = [0.0; 4];

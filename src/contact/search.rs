@@ -1,10 +1,9 @@
 //! Finding the master segment of a slave point without an all-pairs loop: a tracked point
 //! walks from its last segment to the neighbour its projection points to (`ξ > 1`: next,
 //! `ξ < −1`: previous); an untracked point queries a uniform grid of segment bounding boxes
-//! (cell size = search radius) built once per evaluation.
+//! built once per increment.
 
 use super::geometry::SegmentGeom;
-use std::collections::HashMap;
 
 /// Tolerance on `|ξ| ≤ 1` when deciding that a projection belongs to a segment.
 pub const XI_TOL: f64 = 1e-10;
@@ -55,43 +54,109 @@ pub fn walk(
     }
 }
 
-/// Uniform grid over segment bounding boxes inflated by the search radius.
+/// Uniform grid over segment bounding boxes inflated by the search radius, stored flat
+/// (cell lists in one array with offsets, no hashing). The number of cells is bounded by a
+/// small multiple of the number of segments, whatever the radius or the extent.
+#[derive(Debug, Clone)]
 pub struct SegmentGrid {
+    origin: [f64; 2],
     cell: f64,
-    cells: HashMap<(i64, i64), Vec<usize>>,
+    dims: [usize; 2],
+    /// `items[start[c]..start[c + 1]]` are the segments of cell `c`.
+    start: Vec<u32>,
+    items: Vec<u32>,
+    /// Segments covering too many cells (long rigid planes), checked for every query.
+    big: Vec<u32>,
 }
 
 impl SegmentGrid {
     pub fn new(boxes: impl Iterator<Item = ([f64; 2], [f64; 2])>, radius: f64) -> Self {
-        let cell = radius.max(1e-12);
-        let mut cells: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
-        for (k, (lo, hi)) in boxes.enumerate() {
-            let (i0, j0) = Self::key(cell, [lo[0] - radius, lo[1] - radius]);
-            let (i1, j1) = Self::key(cell, [hi[0] + radius, hi[1] + radius]);
-            // very long pieces (rigid planes) are capped to keep the grid small; the caller
-            // falls back to a direct check for them
-            if (i1 - i0 + 1) * (j1 - j0 + 1) > 4096 {
-                cells.entry((i64::MIN, i64::MIN)).or_default().push(k);
-                continue;
+        let boxes: Vec<([f64; 2], [f64; 2])> = boxes
+            .map(|(lo, hi)| ([lo[0] - radius, lo[1] - radius], [hi[0] + radius, hi[1] + radius]))
+            .collect();
+        let n = boxes.len();
+        let mut lo = [f64::MAX; 2];
+        let mut hi = [f64::MIN; 2];
+        for (a, b) in &boxes {
+            for d in 0..2 {
+                lo[d] = lo[d].min(a[d]);
+                hi[d] = hi[d].max(b[d]);
             }
-            for i in i0..=i1 {
-                for j in j0..=j1 {
-                    cells.entry((i, j)).or_default().push(k);
+        }
+        let extent = [(hi[0] - lo[0]).max(0.0), (hi[1] - lo[1]).max(0.0)];
+        let max_cells = (4 * n).max(16) as f64;
+        let mut cell = radius.max((extent[0] * extent[1] / max_cells).sqrt());
+        cell = cell.max(extent[0].max(extent[1]) / max_cells).max(1e-12);
+        let finite = extent[0].is_finite() && extent[1].is_finite() && cell.is_finite();
+        let dims = if finite {
+            [(extent[0] / cell) as usize + 1, (extent[1] / cell) as usize + 1]
+        } else {
+            [0, 0]
+        };
+        let mut grid = SegmentGrid {
+            origin: lo,
+            cell,
+            dims,
+            start: vec![0; dims[0] * dims[1] + 1],
+            items: Vec::new(),
+            big: Vec::new(),
+        };
+        // two passes: count, then fill (counting sort into the flat array)
+        let mut ranges = Vec::with_capacity(n);
+        for (k, (a, b)) in boxes.iter().enumerate() {
+            match (grid.key(*a), grid.key(*b)) {
+                (Some(i0), Some(i1)) if (i1[0] - i0[0] + 1) * (i1[1] - i0[1] + 1) <= 64 => {
+                    for i in i0[0]..=i1[0] {
+                        for j in i0[1]..=i1[1] {
+                            grid.start[i * dims[1] + j + 1] += 1;
+                        }
+                    }
+                    ranges.push(Some((i0, i1)));
+                }
+                _ => {
+                    grid.big.push(k as u32);
+                    ranges.push(None);
                 }
             }
         }
-        SegmentGrid { cell, cells }
+        for c in 1..grid.start.len() {
+            grid.start[c] += grid.start[c - 1];
+        }
+        let mut fill = grid.start.clone();
+        grid.items = vec![0; *grid.start.last().unwrap_or(&0) as usize];
+        for (k, r) in ranges.iter().enumerate() {
+            let Some((i0, i1)) = r else { continue };
+            for i in i0[0]..=i1[0] {
+                for j in i0[1]..=i1[1] {
+                    let c = i * dims[1] + j;
+                    grid.items[fill[c] as usize] = k as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+        grid
     }
 
-    fn key(cell: f64, p: [f64; 2]) -> (i64, i64) {
-        ((p[0] / cell).floor() as i64, (p[1] / cell).floor() as i64)
+    /// Cell of `p`, or `None` outside the grid.
+    fn key(&self, p: [f64; 2]) -> Option<[usize; 2]> {
+        let f = [(p[0] - self.origin[0]) / self.cell, (p[1] - self.origin[1]) / self.cell];
+        if !(f[0] >= 0.0 && f[1] >= 0.0) {
+            return None;
+        }
+        let (i, j) = (f[0] as usize, f[1] as usize);
+        (i < self.dims[0] && j < self.dims[1]).then_some([i, j])
     }
 
     /// Candidate segments near `p` (including oversized ones).
     pub fn candidates(&self, p: [f64; 2]) -> impl Iterator<Item = usize> + '_ {
-        let here = self.cells.get(&Self::key(self.cell, p)).into_iter().flatten();
-        let big = self.cells.get(&(i64::MIN, i64::MIN)).into_iter().flatten();
-        here.chain(big).copied()
+        let here: &[u32] = match self.key(p) {
+            Some([i, j]) => {
+                let c = i * self.dims[1] + j;
+                &self.items[self.start[c] as usize..self.start[c + 1] as usize]
+            }
+            None => &[],
+        };
+        here.iter().chain(&self.big).map(|&k| k as usize)
     }
 }
 

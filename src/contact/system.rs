@@ -7,13 +7,14 @@
 use super::geometry::SegmentGeom;
 use super::law::ContactState;
 use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
-use super::search::{closest, walk, Located, SegmentGrid, XI_TOL};
+use super::pairing::{self, Pairing};
+use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
 use crate::model::{ContactPair, Master, Model, RigidShape, Slave};
 use crate::record::{ContactPointRecord, CrossingRecord};
 
 /// History of one slave point at the last converged increment.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct PointHistory {
     /// Segment the point is tracked on (kept while open, for the neighbour walk).
     pub segment: Option<usize>,
@@ -23,7 +24,24 @@ pub struct PointHistory {
     /// Covariant traction `T_1` on `segment`.
     pub t1: f64,
     pub a11: f64,
+    /// Gap at the last converged increment of a point that was paired but open (NaN
+    /// otherwise): its first touch is interpolated from it.
+    pub gap: f64,
     pub crossings: u32,
+}
+
+impl Default for PointHistory {
+    fn default() -> Self {
+        PointHistory {
+            segment: None,
+            closed: false,
+            xi: f64::NAN,
+            t1: 0.0,
+            a11: f64::NAN,
+            gap: f64::NAN,
+            crossings: 0,
+        }
+    }
 }
 
 /// Evaluation of one slave point at the current iterate.
@@ -52,7 +70,22 @@ impl Default for PointNow {
 pub struct ContactSystem {
     pub committed: Vec<Vec<PointHistory>>,
     pub current: Vec<Vec<PointNow>>,
+    /// Pairing of every point at the current iterate.
+    pub pairings: Vec<Vec<Pairing>>,
+    /// Search grid of each pair for points not yet tracked (built once per increment).
+    grids: Vec<Option<SegmentGrid>>,
+    /// Decisions held fixed by the solver for the rest of the increment (chattering
+    /// points): the segment is kept and the state is the kernel's `forced` state.
+    frozen: Vec<Vec<Option<Decision>>>,
 }
+
+/// A point's contact decision at one iterate: its state and the segment it is tracked on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Decision {
+    pub state: ContactState,
+    pub segment: Option<usize>,
+}
+
 
 /// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
 pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64]) + 'a;
@@ -71,18 +104,17 @@ impl Config<'_> {
         [x[0] + self.u[2 * n], x[1] + self.u[2 * n + 1]]
     }
 
-    fn slave_pos(&self, s: Slave) -> [f64; 2] {
-        match s {
-            Slave::Node(n) => self.node(n),
-            Slave::RigidPoint(r) => {
-                let body = &self.model.rigid[r];
-                let RigidShape::Point { at } = body.shape else {
-                    unreachable!("validated")
-                };
-                let o = body.offset(self.t);
-                [at[0] + o[0], at[1] + o[1]]
-            }
-        }
+    /// Current position of a slave point.
+    pub fn slave_pos(&self, s: Slave) -> [f64; 2] {
+        let (r, v) = match s {
+            Slave::Node(n) => return self.node(n),
+            Slave::RigidPoint(r) => (r, 0),
+            Slave::RigidVertex(r, v) => (r, v),
+        };
+        let body = &self.model.rigid[r];
+        let at = body.vertex(v).expect("validated by the scene builder");
+        let o = body.offset(self.t);
+        [at[0] + o[0], at[1] + o[1]]
     }
 
     fn seg_source(&self, pair: &ContactPair, k: usize) -> (SegSource, Option<[usize; 2]>) {
@@ -148,20 +180,21 @@ fn local_problem(
     pair: &ContactPair,
     slave: Slave,
     b: usize,
-    closed: Option<(StoredTraction, usize, Path)>,
+    closed: Option<(StoredTraction, usize, Path, Option<f64>)>,
 ) -> (PointProblem, Slots) {
     let mut slots = Slots {
         nodes: Vec::with_capacity(MAX_NODES),
     };
     let slave_src = match slave {
         Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
-        Slave::RigidPoint(_) => SlaveSource::Fixed(cfg.slave_pos(slave)),
+        Slave::RigidPoint(_) | Slave::RigidVertex(..) => SlaveSource::Fixed(cfg.slave_pos(slave)),
     };
     let seg_b = slots.source(cfg, pair, b);
-    let closed = closed.map(|(stored, a, path)| Closed {
+    let closed = closed.map(|(stored, a, path, touch_gap)| Closed {
         stored,
         seg_a: slots.source(cfg, pair, a),
         path,
+        touch_gap,
     });
     let mut x = [[0.0; 2]; MAX_NODES];
     for (i, &n) in slots.nodes.iter().enumerate() {
@@ -175,6 +208,7 @@ fn local_problem(
         slave: slave_src,
         seg_b,
         closed,
+        forced: None,
     };
     (problem, slots)
 }
@@ -223,68 +257,126 @@ impl ContactSystem {
             .iter()
             .map(|p| vec![PointNow::default(); p.slaves.len()])
             .collect();
-        ContactSystem { committed, current }
+        let pairings = model
+            .contacts
+            .iter()
+            .map(|p| vec![Pairing::default(); p.slaves.len()])
+            .collect();
+        let frozen = model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect();
+        ContactSystem {
+            committed,
+            current,
+            pairings,
+            grids: vec![None; model.contacts.len()],
+            frozen,
+        }
     }
 
-    /// Forget the current iterate (after a cut-back).
+    /// Forget the current iterate (at the start of an attempt at an increment); the search
+    /// grids are rebuilt once for the new increment.
     pub fn reset_current(&mut self) {
         for pair in &mut self.current {
             pair.iter_mut().for_each(|p| *p = PointNow::default());
         }
+        self.grids.iter_mut().for_each(|g| *g = None);
+        self.unfreeze();
     }
 
-    /// `(state code, segment)` of every point at the current iterate (active-set changes).
-    pub fn signature(&self) -> Vec<(u8, Option<usize>)> {
-        self.current
-            .iter()
-            .flatten()
-            .map(|p| (p.eval.map_or(0, |e| e.state.code()), p.segment))
-            .collect()
+    /// Release every frozen point.
+    pub fn unfreeze(&mut self) {
+        self.frozen.iter_mut().flatten().for_each(|f| *f = None);
     }
 
-    /// Locate and evaluate every slave point; for each closed point call
+    /// Number of frozen points.
+    pub fn frozen_count(&self) -> usize {
+        self.frozen.iter().flatten().filter(|f| f.is_some()).count()
+    }
+
+    /// `(pair, slave)` of the `flat`-th point in [`Self::signature`] order.
+    pub fn point_index(&self, flat: usize) -> (usize, usize) {
+        let mut k = flat;
+        for (ip, pts) in self.current.iter().enumerate() {
+            if k < pts.len() {
+                return (ip, k);
+            }
+            k -= pts.len();
+        }
+        panic!("point {flat} out of range")
+    }
+
+    /// Hold the `flat`-th point at `frozen` for the rest of the increment.
+    pub fn freeze(&mut self, flat: usize, frozen: Decision) {
+        let (ip, is) = self.point_index(flat);
+        self.frozen[ip][is] = Some(frozen);
+    }
+
+    /// `(state, segment)` of every point at the current iterate, written into `out`
+    /// (active-set changes; the order is pairs, then slaves).
+    pub fn signature_into(&self, out: &mut Vec<Decision>) {
+        out.clear();
+        out.extend(self.current.iter().flatten().map(|p| Decision {
+            state: p.eval.map_or(ContactState::Open, |e| e.state),
+            segment: p.segment,
+        }));
+    }
+
+    /// Number of slave points over all pairs.
+    pub fn signature_len(&self) -> usize {
+        self.current.iter().map(Vec::len).sum()
+    }
+
+    /// `ξ` of the `flat`-th point at the current iterate (NaN when unpaired).
+    pub fn xi(&self, flat: usize) -> f64 {
+        let (ip, is) = self.point_index(flat);
+        self.current[ip][is].eval.map_or(f64::NAN, |e| e.proj.xi)
+    }
+
+    /// Pairing step: locate every slave point of every pair (tracking, search, vertex
+    /// rules; see [`super::pairing`]) before any kernel runs.
+    pub fn pair(&mut self, cfg: &Config) {
+        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            let grid = &mut self.grids[ip];
+            for (is, &slave) in pair.slaves.iter().enumerate() {
+                let start = self.current[ip][is].segment.or(self.committed[ip][is].segment);
+                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, grid);
+            }
+        }
+        pairing::exclude_owned_vertices(cfg, &mut self.pairings);
+        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            for (is, &slave) in pair.slaves.iter().enumerate() {
+                if let Some(f) = self.frozen[ip][is] {
+                    self.pairings[ip][is] = pairing::held(cfg, pair, slave, f.segment);
+                }
+            }
+        }
+    }
+
+    /// Pair, then evaluate every paired slave point; for each closed point call
     /// `assemble(nodes, r, k)` with its local residual (`2·nodes.len()`) and tangent.
     pub fn evaluate(&mut self, cfg: &Config, assemble: &mut LocalSink) {
+        self.pair(cfg);
         let mut r = [0.0; 2 * MAX_NODES];
         let mut k = [0.0; 4 * MAX_NODES * MAX_NODES];
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
-            let geom = |s: usize| cfg.segment(pair, s);
-            let nb = |s: usize| pair.master.neighbours(s);
-            let mut grid: Option<SegmentGrid> = None;
             for (is, &slave) in pair.slaves.iter().enumerate() {
-                let rs = cfg.slave_pos(slave);
                 let hist = self.committed[ip][is];
-                let start = self.current[ip][is].segment.or(hist.segment);
-                let located: Option<Located> = match start {
-                    Some(s0) => Some(walk(s0, rs, &geom, &nb, pair.master.segment_count())),
-                    None => {
-                        let g = grid.get_or_insert_with(|| {
-                            SegmentGrid::new(
-                                (0..pair.master.segment_count()).map(|s| bbox(&geom(s))),
-                                pair.search_radius,
-                            )
-                        });
-                        closest(rs, g.candidates(rs), &geom, pair.search_radius)
-                    }
-                };
+                let paired = self.pairings[ip][is];
                 let now = &mut self.current[ip][is];
-                *now = PointNow::default();
-                let Some(loc) = located else { continue };
-                if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
-                    continue; // far away: untracked
-                }
-                now.segment = Some(loc.segment);
-                if loc.xi.abs() > 1.0 + XI_TOL {
-                    continue; // past a free end or in a convex-vertex gap: open
-                }
-                let closed = match (hist.closed, hist.segment) {
+                *now = PointNow {
+                    segment: paired.segment,
+                    ..PointNow::default()
+                };
+                let Some(loc) = paired.located else { continue };
+                let touch = !hist.closed && hist.gap.is_finite() && pair.law.mu > 0.0;
+                let closed = match (hist.closed || touch, hist.segment) {
                     (true, Some(a)) => {
                         now.path = path_between(cfg, pair, a, loc.segment);
-                        Some((stored(&hist), a, now.path))
+                        Some((stored(&hist), a, now.path, touch.then_some(hist.gap)))
                     }
                     _ => None,
                 };
-                let (problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
+                let (mut problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
+                problem.forced = self.frozen[ip][is].map(|f| f.state);
                 let nd = 2 * slots.nodes.len();
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);
@@ -313,13 +405,23 @@ impl ContactSystem {
                             }
                         }
                         h.closed = true;
+                        h.gap = f64::NAN;
                         h.xi = e.proj.xi;
                         h.t1 = e.t1;
                         h.a11 = e.proj.a11;
                     }
-                    _ => {
+                    Some(e) => {
+                        // paired but open: where it is, for the first touch
                         h.closed = false;
                         h.t1 = 0.0;
+                        h.xi = e.proj.xi;
+                        h.a11 = e.proj.a11;
+                        h.gap = e.proj.gap;
+                    }
+                    None => {
+                        h.closed = false;
+                        h.t1 = 0.0;
+                        h.gap = f64::NAN;
                     }
                 }
             }
@@ -339,26 +441,6 @@ impl ContactSystem {
         }
         out
     }
-}
-
-fn is_own_segment(pair: &ContactPair, slave: Slave, seg: usize) -> bool {
-    match (&pair.master, slave) {
-        (Master::Face { segments, .. }, Slave::Node(n)) => segments[seg].contains(&n),
-        _ => false,
-    }
-}
-
-fn bbox(g: &SegmentGeom<f64>) -> ([f64; 2], [f64; 2]) {
-    let pts: Vec<[f64; 2]> = (0..=8).map(|i| g.eval(-1.0 + 0.25 * i as f64).0).collect();
-    let lo = [
-        pts.iter().map(|p| p[0]).fold(f64::MAX, f64::min),
-        pts.iter().map(|p| p[1]).fold(f64::MAX, f64::min),
-    ];
-    let hi = [
-        pts.iter().map(|p| p[0]).fold(f64::MIN, f64::max),
-        pts.iter().map(|p| p[1]).fold(f64::MIN, f64::max),
-    ];
-    (lo, hi)
 }
 
 /// Crossing event: the trial traction just before transfer (the old segment `A` extended,
@@ -387,7 +469,7 @@ fn crossing_record(
         direction: 0,
         between: 0.0,
     };
-    let (ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same)));
+    let (ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same, None)));
     let ext = ext.evaluate_f64();
     CrossingRecord {
         pair: ip,

@@ -49,11 +49,24 @@ pub struct NodalLoad {
     pub ramp: Ramp,
 }
 
-/// A contact slave: a node of a deformable body or a rigid point.
+/// A contact slave: a node of a deformable body, a rigid point, or a vertex of a rigid
+/// outline (`(body, vertex)`, the vertex being the polyline's point index).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Slave {
     Node(usize),
     RigidPoint(usize),
+    RigidVertex(usize, usize),
+}
+
+/// A vertex of a rigid master outline that is itself the slave point of another pair (the
+/// corner of a block against a deformable face): that pair owns the vertex region (see
+/// [`crate::contact::pairing`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OwnedVertex {
+    /// Point index of the vertex in the outline (between pieces `vertex − 1` and `vertex`).
+    pub vertex: usize,
+    /// Index of the owning pair in [`Model::contacts`] (its only slave is the vertex).
+    pub owner: usize,
 }
 
 /// A contact master surface.
@@ -98,6 +111,8 @@ pub struct ContactPair {
     pub transfer: TransferKind,
     /// Slaves farther than this from a segment are not searched against it.
     pub search_radius: f64,
+    /// Vertices of a rigid master outline owned by another pair's slave.
+    pub owned_vertices: Vec<OwnedVertex>,
 }
 
 /// Load–displacement monitor: mean displacement of a node set in one direction and the sum
@@ -112,7 +127,7 @@ pub struct Monitor {
 }
 
 /// The resolved model.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Model {
     pub name: String,
     pub description: String,
@@ -131,6 +146,15 @@ pub struct Model {
 impl Model {
     pub fn dof_count(&self) -> usize {
         2 * self.nodes.len()
+    }
+
+    /// `node N`, `rigid NAME` or `rigid NAME vertex K`.
+    pub fn slave_label(&self, s: Slave) -> String {
+        match s {
+            Slave::Node(n) => format!("node {n}"),
+            Slave::RigidPoint(r) => format!("rigid {}", self.rigid[r].name),
+            Slave::RigidVertex(r, v) => format!("rigid {} vertex {v}", self.rigid[r].name),
+        }
     }
 }
 

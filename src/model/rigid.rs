@@ -79,4 +79,19 @@ impl RigidBody {
     pub fn offset(&self, t: f64) -> [f64; 2] {
         [self.motion[0].at(t), self.motion[1].at(t)]
     }
+
+    /// Reference position of a rigid point, or of vertex `vertex` of an outline (`None`
+    /// when the body has no such vertex).
+    pub fn vertex(&self, vertex: usize) -> Option<[f64; 2]> {
+        match &self.shape {
+            RigidShape::Point { at } => (vertex == 0).then_some(*at),
+            RigidShape::Surface { pieces } => {
+                let end = |p: &Piece, xi: f64| p.eval(xi).0;
+                match vertex {
+                    0 => pieces.first().map(|p| end(p, -1.0)),
+                    v => pieces.get(v - 1).map(|p| end(p, 1.0)),
+                }
+            }
+        }
+    }
 }

@@ -4,7 +4,7 @@
 
 use super::real::{Real, Real2};
 use super::{ContactPointRecord, CrossingRecord};
-use crate::model::{Master, Model, RigidShape, Slave};
+use crate::model::{Master, Model, RigidShape};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -118,7 +118,7 @@ impl ModelRecord {
             .iter()
             .map(|c| PairInfo {
                 name: c.name.clone(),
-                slaves: c.slaves.iter().map(|s| slave_label(model, *s)).collect(),
+                slaves: c.slaves.iter().map(|s| model.slave_label(*s)).collect(),
                 master: match &c.master {
                     Master::Face { body, .. } => format!("body {}", model.bodies[*body].name),
                     Master::Rigid { body, .. } => format!("rigid {}", model.rigid[*body].name),
@@ -173,13 +173,6 @@ impl ModelRecord {
                 .iter()
                 .zip(&other.contacts)
                 .all(|(a, b)| a.slaves == b.slaves && a.master == b.master)
-    }
-}
-
-fn slave_label(model: &Model, s: Slave) -> String {
-    match s {
-        Slave::Node(n) => format!("node {n}"),
-        Slave::RigidPoint(r) => format!("rigid {}", model.rigid[r].name),
     }
 }
 

@@ -2,6 +2,7 @@
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
 pub mod csv;
+mod failure;
 pub mod jsonl;
 pub mod mcap_sink;
 pub mod messages;
@@ -11,6 +12,7 @@ pub mod rerun_sink;
 mod rerun_view;
 pub mod schemas;
 
+pub use failure::{ChangingPoint, FailureKind, PointDecision};
 pub use observer::{Fanout, Memory, Observer, ObserverError};
 
 use crate::contact::law::ContactState;
@@ -152,10 +154,7 @@ impl ContactPointRecord {
         now: &PointNow,
         hist: &PointHistory,
     ) -> Self {
-        let label = match slave {
-            Slave::Node(n) => format!("node {n}"),
-            Slave::RigidPoint(r) => format!("rigid {}", cfg.model.rigid[r].name),
-        };
+        let label = cfg.model.slave_label(slave);
         let pos = match (slave, now.eval) {
             (Slave::Node(n), _) => {
                 let x = cfg.model.nodes[n];
@@ -278,6 +277,13 @@ pub enum Outcome {
         reason: String,
         #[serde(with = "Reals")]
         residuals: Vec<f64>,
+        /// What made the increment fail.
+        #[serde(default)]
+        kind: FailureKind,
+        /// Contact points that changed state or segment in the failed attempt, most
+        /// changes first.
+        #[serde(default)]
+        points: Vec<ChangingPoint>,
     },
     Interrupted {
         increment: usize,

@@ -7,6 +7,7 @@ use crate::contact::law::ContactLaw;
 use crate::element::material::{lame, Material};
 use crate::model::mesh::RectMesh;
 use crate::model::{
+    OwnedVertex,
     chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, Piece, Prescribed, Ramp,
     RigidBody, RigidShape, Slave,
 };
@@ -258,6 +259,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         let pair = contact_pair(&cx, &m, c, h)?;
         m.contacts.push(pair);
     }
+    own_vertices(&mut m);
     if let Some(mon) = &s.monitor {
         let bi = body_index(&cx, &m, &mon.body)?;
         m.monitor = Some(Monitor {
@@ -296,10 +298,19 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         }
         (None, None, Some(r)) => {
             let ri = rigid_index(cx, m, r)?;
-            if !matches!(m.rigid[ri].shape, RigidShape::Point { .. }) {
-                return Err(bad("a rigid slave must be a `point`"));
+            match (&m.rigid[ri].shape, c.slave.vertex) {
+                (RigidShape::Point { .. }, None) => vec![Slave::RigidPoint(ri)],
+                (RigidShape::Surface { pieces }, Some(v)) if v <= pieces.len() => {
+                    vec![Slave::RigidVertex(ri, v)]
+                }
+                (RigidShape::Surface { pieces }, Some(v)) => {
+                    return Err(bad(&format!(
+                        "`{r}` has vertices 0..={}, not {v}",
+                        pieces.len()
+                    )))
+                }
+                _ => return Err(bad("a rigid slave is a `point`, or a polyline with `vertex = K`")),
             }
-            vec![Slave::RigidPoint(ri)]
         }
         _ => return Err(bad("invalid slave")),
     };
@@ -347,5 +358,28 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         },
         transfer: c.transfer,
         search_radius: c.search_radius.unwrap_or(2.0 * h),
+        owned_vertices: Vec::new(),
     })
+}
+
+/// Mark the vertices of rigid master outlines that another pair's slave owns.
+fn own_vertices(m: &mut Model) {
+    let owners: Vec<(usize, usize, usize)> = m
+        .contacts
+        .iter()
+        .enumerate()
+        .filter_map(|(ip, p)| match p.slaves.as_slice() {
+            [Slave::RigidVertex(body, vertex)] => Some((ip, *body, *vertex)),
+            _ => None,
+        })
+        .collect();
+    for pair in &mut m.contacts {
+        if let Master::Rigid { body, .. } = pair.master {
+            for &(owner, b, vertex) in &owners {
+                if b == body {
+                    pair.owned_vertices.push(OwnedVertex { vertex, owner });
+                }
+            }
+        }
+    }
 }

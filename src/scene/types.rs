@@ -192,8 +192,12 @@ pub struct SlaveSpec {
     /// Nodes of a deformable body …
     pub body: Option<String>,
     pub nodes: Option<NodeSelection>,
-    /// … or a rigid point.
+    /// … or a rigid point, …
     pub rigid: Option<String>,
+    /// … or, with `rigid`, a vertex (point index) of a rigid polyline: the corner of that
+    /// outline as a slave point. The contact then owns the vertex: slave nodes of the face
+    /// segment the corner is paired with are not paired with the outline next to it.
+    pub vertex: Option<usize>,
 }
 
 /// The master side of a contact pair.
@@ -221,7 +225,9 @@ pub struct ContactSpec {
     pub mu: f64,
     #[serde(default = "default_transfer")]
     pub transfer: TransferKind,
-    /// Search radius (default: twice the largest element edge of the model).
+    /// Search radius: slaves farther than this from the master surface are not paired with
+    /// it (default: twice the largest element edge of the model). Free ends and convex
+    /// vertices are handled by rule, not by this radius.
     pub search_radius: Option<f64>,
 }
 

@@ -1,5 +1,6 @@
 //! Newton–Raphson with load stepping, automatic cut-backs and step growth.
 
+pub mod active_set;
 pub mod newton;
 pub mod run;
 pub mod settings;

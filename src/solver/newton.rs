@@ -6,13 +6,18 @@ use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
 use crate::model::Model;
-use crate::record::IterationRecord;
+use super::active_set::ActiveSetWatch;
+use crate::record::{FailureKind, IterationRecord};
 
 /// Why an increment failed (the stepping driver cuts the step back on these).
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum NewtonFailure {
     #[error("no convergence in {iterations} iterations")]
     MaxIterations { iterations: usize },
+    #[error("active-set cycle: {points} contact points kept changing state or segment ({iterations} iterations)")]
+    ActiveSetCycle { iterations: usize, points: usize },
+    #[error("frozen contact points did not verify: ‖R‖ = {residual:.3e} with them released")]
+    FrozenNotVerified { residual: f64 },
     #[error("residual diverged (‖R‖ = {residual:.3e})")]
     Diverged { residual: f64 },
     #[error("non-finite residual")]
@@ -23,12 +28,30 @@ pub enum NewtonFailure {
     Linear(#[from] LinearError),
 }
 
+impl NewtonFailure {
+    /// The failure kind recorded in the outcome.
+    pub fn kind(&self) -> FailureKind {
+        match self {
+            NewtonFailure::MaxIterations { .. } => FailureKind::NoConvergence,
+            NewtonFailure::ActiveSetCycle { .. } | NewtonFailure::FrozenNotVerified { .. } => {
+                FailureKind::ActiveSetCycle
+            }
+            NewtonFailure::Diverged { .. } => FailureKind::Diverged,
+            NewtonFailure::NonFinite => FailureKind::NonFinite,
+            NewtonFailure::Element(_) => FailureKind::InvertedElement,
+            NewtonFailure::Linear(_) => FailureKind::LinearSolver,
+        }
+    }
+}
+
 /// Outcome of a converged increment (`residuals`: `‖R‖` at each iterate).
 #[derive(Debug, Clone)]
 pub struct Converged {
     pub iterations: usize,
     pub residuals: Vec<f64>,
     pub reference: f64,
+    /// Points frozen during the increment and verified at its end.
+    pub frozen: usize,
 }
 
 /// Norm of the reactions (internal forces at prescribed DOFs) and of the applied loads.
@@ -38,9 +61,28 @@ fn reference_force(model: &Model, asm: &Assembler, t: f64) -> f64 {
     (reac + load).sqrt()
 }
 
+/// Buffers and diagnostics of one attempt, reused across increments.
+#[derive(Debug, Default)]
+pub struct Workspace {
+    r: Vec<f64>,
+    du: Vec<f64>,
+    frozen: Vec<bool>,
+    /// `‖R‖` at each iterate of the last attempt.
+    pub residuals: Vec<f64>,
+    /// The active-set history of the last attempt.
+    pub watch: ActiveSetWatch,
+}
+
 /// Iterate to equilibrium at time `t` starting from `state` (prescribed DOFs are set here).
 /// `on_iteration` receives one record per correction; failures leave `state` dirty (the
 /// caller restores the last converged one).
+///
+/// Converged when `‖R‖ ≤ max(tol · F_ref, residual_abs, ε_round)` and the energy norm of the
+/// last correction fell below `energy_tol` times that of the first, where `F_ref` is the
+/// norm of reactions and loads (never below the largest converged one of the run) and
+/// `ε_round = 1e-13 ‖Σ|r_e|‖` is the round-off level of the assembled residual (the norm
+/// of the summed absolute element and contact contributions): refining the mesh or the
+/// step never asks for a residual below what the arithmetic can resolve.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_increment(
     model: &Model,
@@ -51,39 +93,73 @@ pub fn solve_increment(
     reference_floor: f64,
     record: &mut dyn FnMut(IterationRecord) -> bool,
     (increment, attempt): (usize, usize),
-    residuals: &mut Vec<f64>,
+    ws: &mut Workspace,
 ) -> Result<Converged, NewtonFailure> {
-    residuals.clear();
+    ws.residuals.clear();
     for p in &model.prescribed {
         state.u[p.dof] = p.ramp.at(t);
     }
     let n = asm.dofs.n_free;
-    let mut r = vec![0.0; n];
-    let mut du = vec![0.0; n];
+    ws.r.resize(n, 0.0);
+    ws.du.resize(n, 0.0);
     let mut e0 = 0.0f64;
     let mut e_last = f64::INFINITY;
     let mut r0 = 0.0f64;
-    let mut signature = state.contact.signature();
+    let mut freezing = settings.freeze_after > 0;
+    let mut verified_once = false;
+    let mut started = false;
     for k in 0..=settings.max_iterations {
         asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-        asm.free_residual(&mut r);
-        let rn = norm(&r);
+        if !started {
+            ws.watch.start(&state.contact);
+            ws.frozen.clear();
+            ws.frozen.resize(state.contact.signature_len(), false);
+            started = true;
+        }
+        asm.free_residual(&mut ws.r);
+        let rn = norm(&ws.r);
         if !rn.is_finite() {
             return Err(NewtonFailure::NonFinite);
         }
-        residuals.push(rn);
+        ws.residuals.push(rn);
         let fref = reference_force(model, asm, t).max(reference_floor);
         if k == 0 {
             r0 = rn;
         }
-        let res_ok = rn <= (settings.residual_tol * fref).max(settings.residual_abs);
+        let tol = (settings.residual_tol * fref).max(settings.residual_abs).max(asm.roundoff());
+        let res_ok = rn <= tol;
         let energy_ok = k > 0 && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE);
-        if res_ok && (energy_ok || k == 0 || rn <= settings.residual_abs) {
-            return Ok(Converged {
-                iterations: k,
-                residuals: residuals.clone(),
-                reference: fref,
-            });
+        if res_ok && (energy_ok || k == 0 || rn <= settings.residual_abs.max(asm.roundoff())) {
+            let frozen = state.contact.frozen_count();
+            if frozen == 0 {
+                return Ok(Converged {
+                    iterations: k,
+                    residuals: ws.residuals.clone(),
+                    reference: fref,
+                    frozen: ws.frozen.iter().filter(|f| **f).count(),
+                });
+            }
+            // release the frozen points and check the state they held
+            state.contact.unfreeze();
+            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+            asm.free_residual(&mut ws.r);
+            let rv = norm(&ws.r);
+            if rv <= tol {
+                ws.residuals.push(rv);
+                return Ok(Converged {
+                    iterations: k,
+                    residuals: ws.residuals.clone(),
+                    reference: fref,
+                    frozen,
+                });
+            }
+            if verified_once {
+                return Err(NewtonFailure::FrozenNotVerified { residual: rv });
+            }
+            // go on from here with every point free to choose (no more freezing)
+            verified_once = true;
+            freezing = false;
+            e0 = 0.0;
         }
         if rn > settings.divergence_factor * r0.max(fref) {
             return Err(NewtonFailure::Diverged { residual: rn });
@@ -91,34 +167,35 @@ pub fn solve_increment(
         if k == settings.max_iterations {
             break;
         }
-        for (d, ri) in du.iter_mut().zip(&r) {
+        for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
-        asm.matrix.solve(&mut du)?;
-        let energy = du.iter().zip(&r).map(|(a, b)| a * b).sum::<f64>().abs();
-        if k == 0 {
+        asm.matrix.solve(&mut ws.du)?;
+        let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
+        if e0 == 0.0 {
             e0 = energy;
         }
         e_last = energy;
         let mut step = 1.0;
-        apply(&mut state.u, &asm.dofs.eq, &du, step);
+        apply(&mut state.u, &asm.dofs.eq, &ws.du, step);
         if settings.line_search {
             // backtrack on ‖R‖ (residual-only assemblies)
             for _ in 0..8 {
                 asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
-                asm.free_residual(&mut r);
-                let rt = norm(&r);
+                asm.free_residual(&mut ws.r);
+                let rt = norm(&ws.r);
                 if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
                     break;
                 }
                 // take back half of the current step (no copy of u on the hot path)
-                apply(&mut state.u, &asm.dofs.eq, &du, -0.5 * step);
+                apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
                 step *= 0.5;
             }
         }
-        let sig = state.contact.signature();
-        let changes = sig.iter().zip(&signature).filter(|(a, b)| a != b).count();
-        signature = sig;
+        let changes = ws.watch.observe(&state.contact, k + 1);
+        if freezing {
+            ws.watch.freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen);
+        }
         let keep_going = record(IterationRecord {
             increment,
             attempt,
@@ -134,9 +211,12 @@ pub fn solve_increment(
             break;
         }
     }
-    Err(NewtonFailure::MaxIterations {
-        iterations: residuals.len() - 1,
-    })
+    let iterations = ws.residuals.len() - 1;
+    if ws.watch.cycling(3) {
+        let points = ws.watch.report(&state.contact, model, usize::MAX).len();
+        return Err(NewtonFailure::ActiveSetCycle { iterations, points });
+    }
+    Err(NewtonFailure::MaxIterations { iterations })
 }
 
 fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {

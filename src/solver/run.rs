@@ -1,13 +1,13 @@
 //! Load stepping over the pseudo-time: increments, cut-backs on failure, growth back toward
 //! the nominal step, and the reports to the observer.
 
-use super::newton::solve_increment;
+use super::newton::{solve_increment, Workspace};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::system::Config;
 use crate::model::Model;
 use crate::record::{
-    IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
+    ChangingPoint, FailureKind, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
 };
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
@@ -17,7 +17,9 @@ use std::time::Instant;
 pub enum SolveError {
     #[error(
         "increment {increment} failed at t = {t:.6} (step {dt:.3e}) after {cutbacks} cut-backs: {reason}; \
-         last residuals {residuals:?}"
+         residuals {}{}",
+        compact(residuals),
+        changing(points)
     )]
     StepFailed {
         increment: usize,
@@ -26,11 +28,49 @@ pub enum SolveError {
         cutbacks: usize,
         reason: String,
         residuals: Vec<f64>,
+        kind: FailureKind,
+        /// Contact points that changed state or segment in the last attempt.
+        points: Vec<ChangingPoint>,
     },
     #[error("interrupted during increment {increment} (last converged t = {t:.6})")]
     Interrupted { increment: usize, t: f64 },
     #[error("recording failed: {0}")]
     Observer(#[from] ObserverError),
+}
+
+/// The last residuals of an attempt, 3 significant digits, at most 8 of them.
+fn compact(residuals: &[f64]) -> String {
+    let skip = residuals.len().saturating_sub(8);
+    let tail: Vec<String> = residuals[skip..].iter().map(|r| format!("{r:.2e}")).collect();
+    format!("{}[{}]", if skip > 0 { "… " } else { "" }, tail.join(", "))
+}
+
+/// The contact points that kept changing, one short phrase each.
+fn changing(points: &[ChangingPoint]) -> String {
+    if points.is_empty() {
+        return String::new();
+    }
+    let names: Vec<String> = points
+        .iter()
+        .take(4)
+        .map(|p| {
+            let segs: Vec<String> = p
+                .history
+                .iter()
+                .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
+                .collect();
+            format!(
+                "{} `{}` ({} changes from iteration {}, ξ = {:.3}: {})",
+                p.slave_label,
+                p.pair_name,
+                p.changes,
+                p.first_change,
+                p.xi,
+                segs.join(" → ")
+            )
+        })
+        .collect();
+    format!("; changing contact points: {}", names.join("; "))
 }
 
 /// Figures of a completed run.
@@ -97,12 +137,16 @@ pub fn run(model: &Model, info: &RunInfo, obs: &mut dyn Observer, stop: &AtomicB
             t,
             reason,
             residuals,
+            kind,
+            points,
             ..
         }) => Outcome::Failed {
             increment: *increment,
             t: *t,
             reason: reason.clone(),
             residuals: residuals.clone(),
+            kind: *kind,
+            points: points.clone(),
         },
         Err(SolveError::Interrupted { increment, t }) => Outcome::Interrupted {
             increment: *increment,
@@ -113,10 +157,16 @@ pub fn run(model: &Model, info: &RunInfo, obs: &mut dyn Observer, stop: &AtomicB
             t: 0.0,
             reason: format!("recording failed: {e}"),
             residuals: vec![],
+            kind: FailureKind::Recording,
+            points: vec![],
         },
     };
     if let Err(e) = &result {
-        let _ = log(obs, LogLevel::Error, 0, 0.0, e.to_string());
+        let (increment, t) = match &outcome {
+            Outcome::Failed { increment, t, .. } | Outcome::Interrupted { increment, t } => (*increment, *t),
+            Outcome::Completed { increments, t } => (*increments, *t),
+        };
+        let _ = log(obs, LogLevel::Error, increment, t, e.to_string());
     }
     let fin = obs.finish(&outcome);
     let summary = result?;
@@ -128,6 +178,7 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
     let st = &model.stepping;
     let nominal = st.end / st.increments.max(1) as f64;
     let mut asm = Assembler::new(model);
+    let mut ws = Workspace::default();
     let mut committed = TrialState::new(model);
     let mut summary = RunSummary::default();
     let mut t = 0.0;
@@ -147,7 +198,6 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
             let mut trial = committed.clone();
             trial.contact.reset_current();
             let mut obs_err = None;
-            let mut residuals = Vec::new();
             let mut interrupted = false;
             let res = solve_increment(
                 model,
@@ -164,7 +214,7 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
                     obs_err.is_none() && !interrupted
                 },
                 (increment, attempt),
-                &mut residuals,
+                &mut ws,
             );
             if let Some(e) = obs_err {
                 return Err(e.into());
@@ -183,7 +233,9 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
                             dt,
                             cutbacks: attempt,
                             reason: f.to_string(),
-                            residuals,
+                            residuals: ws.residuals.clone(),
+                            kind: f.kind(),
+                            points: ws.watch.report(&trial.contact, model, 8),
                         });
                     }
                     log(
@@ -210,9 +262,10 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
             u: &committed.u,
             t,
         };
+        // records first: they compare the converged iterate with the previous increment
+        let points = committed.contact.records(&cfg);
         let crossings = committed.contact.commit(&cfg);
         summary.crossings += crossings.len();
-        let points = committed.contact.records(&cfg);
         let mut reaction_total = [0.0; 2];
         for &d in &asm.dofs.prescribed {
             reaction_total[d % 2] += asm.r_full[d];

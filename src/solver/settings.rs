@@ -49,6 +49,9 @@ pub struct NewtonSettings {
     /// The iteration is declared divergent when `‖R‖` exceeds this multiple of
     /// `max(‖R₀‖, F_ref)`.
     pub divergence_factor: f64,
+    /// A contact point whose state or segment changed this many times within one attempt
+    /// is held fixed for the rest of it and verified at convergence (0: never).
+    pub freeze_after: u32,
 }
 
 impl Default for NewtonSettings {
@@ -60,6 +63,7 @@ impl Default for NewtonSettings {
             energy_tol: 1e-16,
             line_search: false,
             divergence_factor: 1e8,
+            freeze_after: 4,
         }
     }
 }

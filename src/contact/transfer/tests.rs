@@ -42,7 +42,9 @@ fn problem(scheme: TransferKind, slave_x: f64, same_segment: bool) -> PointProbl
                 direction: if same_segment { 0 } else { 1 },
                 between: 0.0,
             },
+            touch_gap: None,
         }),
+        forced: None,
     }
 }
 

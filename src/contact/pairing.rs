@@ -1,0 +1,197 @@
+//! Pairing: which master segment each slave point of each contact pair is paired with at the
+//! current iterate. It runs as a step of its own before any kernel is evaluated (search,
+//! segment tracking, vertex ownership), so that the kernels only see local data.
+//!
+//! Rules, in the order they are applied (sketch for a rigid outline with the body below
+//! and left of the travel, e.g. block B1 of the strip-channel scene):
+//!
+//! ```text
+//!              free end ──┐          vertex region (owned by the corner slave C)
+//!  top face  ◄────────────●  ←  V (convex vertex)
+//!  ξ: +1 ...... −1        │ wall
+//!   x x x x x x x x x x   │  ξ = −1 at V
+//!   x  block (rigid)  x   ▼  ξ = +1 at the free end below
+//! ```
+//! 1. **Tracking.** A point paired at an earlier iterate or increment walks from its last
+//!    segment to the neighbour its projection points to ([`super::search::walk`]); a point
+//!    never paired asks a uniform grid of segment boxes built once per increment.
+//! 2. **Free ends.** A projection past a free end (`|ξ| > 1` on the last segment) has no
+//!    closest point on that surface: the point is not paired (not a search-radius effect).
+//! 3. **Convex vertices.** Outside the body, the Voronoi region of a convex vertex projects
+//!    onto neither neighbour (`ξ > 1` on one, `ξ < −1` on the other): not paired. Inside the
+//!    body both projections can be valid: the point belongs to the face it is nearest to
+//!    (smallest `|ζ|`), so a node pushed into the top face next to `V` is not taken as
+//!    penetrating the wall by its distance to `V`. At concave vertices the walk keeps the
+//!    segment it is on while its projection is valid (hysteresis: no flip-flop).
+//! 4. **Owned vertices.** When a vertex of a rigid outline is itself a slave point of another
+//!    pair (the corner C against the strip's bottom face), the slave nodes of the master
+//!    segment that C presses on (paired, `ζ < 0`) are not paired with the outline's pieces
+//!    next to that vertex: the corner contact supports them, and the vertex is counted once,
+//!    not twice. When C is open (e.g. the strip's end rests on the block's top beyond C),
+//!    the nodes meet the outline themselves.
+//! 5. **Reach.** Points farther than the pair's search radius from the surface (derived from
+//!    the mesh by default) are not paired, so a point never meets the far side of a thin body.
+
+use super::geometry::SegmentGeom;
+use super::search::{closest, walk, Located, SegmentGrid, XI_TOL};
+use super::system::Config;
+use crate::model::{ContactPair, Master, Slave};
+
+/// Pairing of one slave point at the current iterate.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Pairing {
+    /// Segment the point is tracked on (also while open, for the neighbour walk).
+    pub segment: Option<usize>,
+    /// The projection when the point is paired (`|ξ| ≤ 1`, within reach, not excluded).
+    pub located: Option<Located>,
+    /// The point would be paired but its vertex region is owned by another pair.
+    pub excluded: bool,
+}
+
+/// Locate slave `slave` of `pair`, starting from `start` when it is tracked.
+pub fn locate(
+    cfg: &Config,
+    pair: &ContactPair,
+    slave: Slave,
+    start: Option<usize>,
+    grid: &mut Option<SegmentGrid>,
+) -> Pairing {
+    let rs = cfg.slave_pos(slave);
+    let geom = |s: usize| cfg.segment(pair, s);
+    let nb = |s: usize| pair.master.neighbours(s);
+    let count = pair.master.segment_count();
+    let found = match start {
+        Some(s0) => Some(nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb)),
+        None => {
+            let g = grid.get_or_insert_with(|| {
+                SegmentGrid::new((0..count).map(|s| bbox(&geom(s))), pair.search_radius)
+            });
+            closest(rs, g.candidates(rs), &geom, pair.search_radius)
+        }
+    };
+    let Some(loc) = found else {
+        return Pairing::default();
+    };
+    if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
+        return Pairing::default(); // out of reach: untracked
+    }
+    let valid = loc.xi.abs() <= 1.0 + XI_TOL;
+    Pairing {
+        segment: Some(loc.segment),
+        located: valid.then_some(loc),
+        excluded: false,
+    }
+}
+
+/// The pairing of a point held on `segment` by the solver (projection on the segment's
+/// line even past its ends; `None`: unpaired).
+pub fn held(cfg: &Config, pair: &ContactPair, slave: Slave, segment: Option<usize>) -> Pairing {
+    let Some(s) = segment else {
+        return Pairing::default();
+    };
+    let p = cfg.segment(pair, s).project(cfg.slave_pos(slave));
+    Pairing {
+        segment,
+        located: Some(Located {
+            segment: s,
+            xi: p.xi,
+            gap: p.gap,
+        }),
+        excluded: false,
+    }
+}
+
+/// Rule 3: a penetrating point near a convex vertex belongs to the nearer face.
+fn nearest_face(
+    loc: Located,
+    rs: [f64; 2],
+    geom: &dyn Fn(usize) -> SegmentGeom<f64>,
+    nb: &dyn Fn(usize) -> (Option<usize>, Option<usize>),
+) -> Located {
+    if loc.gap >= 0.0 || loc.xi.abs() > 1.0 + XI_TOL {
+        return loc;
+    }
+    let (prev, next) = nb(loc.segment);
+    let (other, forward) = if loc.xi > 0.0 { (next, true) } else { (prev, false) };
+    let Some(o) = other else { return loc };
+    let (gs, go) = (geom(loc.segment), geom(o));
+    let convex = if forward { turn(&gs, &go) } else { turn(&go, &gs) } > 0.0;
+    let p = go.project(rs);
+    if convex && p.xi.abs() <= 1.0 + XI_TOL && p.gap.abs() < loc.gap.abs() {
+        Located {
+            segment: o,
+            xi: p.xi,
+            gap: p.gap,
+        }
+    } else {
+        loc
+    }
+}
+
+/// `ρ_1(a, ξ = 1) × ρ_1(b, ξ = −1)`: positive when the boundary turns left from `a` to `b`,
+/// i.e. at a convex vertex of the body on the left.
+fn turn(a: &SegmentGeom<f64>, b: &SegmentGeom<f64>) -> f64 {
+    let (_, ta) = a.eval(1.0);
+    let (_, tb) = b.eval(-1.0);
+    ta[0] * tb[1] - ta[1] * tb[0]
+}
+
+/// Rule 4: drop the pairing of nodes next to a vertex owned by another pair's slave.
+/// `pairings[ip][is]` are the pairings of every pair at the current iterate.
+pub fn exclude_owned_vertices(cfg: &Config, pairings: &mut [Vec<Pairing>]) {
+    for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+        for owned in &pair.owned_vertices {
+            let owner = &cfg.model.contacts[owned.owner];
+            // while the corner presses on the face (ζ < 0), or has just passed the face's
+            // free end (tracked there with |ξ| > 1: the face's end node is at the corner and
+            // goes round it); an open corner on the face supports nothing
+            let owner_pairing = pairings[owned.owner][0];
+            let Some(seg) = owner_pairing.segment else { continue };
+            // pressing: the pieces on both sides of the vertex; past the end: the piece before
+            // it only (the end node going round the corner meets the piece after it)
+            let (before, after) = match owner_pairing.located {
+                Some(l) if l.gap < 0.0 => (true, true),
+                Some(_) => continue,
+                None => (true, false),
+            };
+            let Master::Face { segments, .. } = &owner.master else {
+                continue;
+            };
+            let supported = segments[seg];
+            for (is, slave) in pair.slaves.iter().enumerate() {
+                let p = &mut pairings[ip][is];
+                let near = p
+                    .located
+                    .is_some_and(|l| (before && l.segment + 1 == owned.vertex) || (after && l.segment == owned.vertex));
+                if near && matches!(slave, Slave::Node(n) if supported.contains(n)) {
+                    p.located = None;
+                    p.excluded = true;
+                }
+            }
+        }
+    }
+}
+
+fn is_own_segment(pair: &ContactPair, slave: Slave, seg: usize) -> bool {
+    match (&pair.master, slave) {
+        (Master::Face { segments, .. }, Slave::Node(n)) => segments[seg].contains(&n),
+        _ => false,
+    }
+}
+
+fn bbox(g: &SegmentGeom<f64>) -> ([f64; 2], [f64; 2]) {
+    let mut lo = [f64::MAX; 2];
+    let mut hi = [f64::MIN; 2];
+    for i in 0..=8 {
+        let p = g.eval(-1.0 + 0.25 * i as f64).0;
+        for d in 0..2 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (lo, hi)
+}
+
+#[cfg(test)]
+#[path = "pairing_tests.rs"]
+mod tests;

@@ -1,0 +1,101 @@
+//! Pairing rules on a rigid block outline `(20, 0) → (6.5, 0) → (6.5, −40)` (body below the
+//! top face and right of the wall), as in the strip-channel scene.
+
+use super::*;
+use crate::contact::law::ContactLaw;
+use crate::contact::transfer::TransferKind;
+use crate::model::{Master, Model, Piece, Ramp, RigidBody, RigidShape};
+
+fn block_model(slaves: &[[f64; 2]]) -> Model {
+    let pieces = vec![
+        Piece::Segment {
+            a: [20.0, 0.0],
+            b: [6.5, 0.0],
+        },
+        Piece::Segment {
+            a: [6.5, 0.0],
+            b: [6.5, -40.0],
+        },
+    ];
+    let mut m = Model::default();
+    m.nodes = slaves.to_vec();
+    m.rigid.push(RigidBody {
+        name: "block".into(),
+        shape: RigidShape::Surface { pieces },
+        motion: [Ramp::constant(0.0), Ramp::constant(0.0)],
+    });
+    m.contacts.push(ContactPair {
+        name: "block".into(),
+        slaves: (0..slaves.len()).map(Slave::Node).collect(),
+        master: Master::Rigid {
+            body: 0,
+            prev: vec![None, Some(0)],
+            next: vec![Some(1), None],
+        },
+        law: ContactLaw {
+            eps_n: 1.0,
+            eps_t: 1.0,
+            mu: 0.0,
+        },
+        transfer: TransferKind::Continuous,
+        search_radius: 1.0,
+        owned_vertices: Vec::new(),
+    });
+    m
+}
+
+fn locate_all(m: &Model, start: Option<usize>) -> Vec<Pairing> {
+    let u = vec![0.0; m.dof_count()];
+    let cfg = Config { model: m, u: &u, t: 0.0 };
+    let pair = &m.contacts[0];
+    let mut grid = None;
+    pair.slaves
+        .iter()
+        .map(|&s| locate(&cfg, pair, s, start, &mut grid))
+        .collect()
+}
+
+#[test]
+fn a_node_on_the_top_face_right_of_the_corner_is_not_a_wall_contact() {
+    // x = 6.75 on the top: its projection on the wall's line lands on the wall's end at
+    // ξ = −1 with ζ = −0.25; it belongs to the top face (ζ = 0), tracked or searched
+    let m = block_model(&[[6.75, 0.0], [6.75, -1e-4], [7.5, -1e-3]]);
+    for start in [None, Some(1), Some(0)] {
+        let p = locate_all(&m, start);
+        for (i, p) in p.iter().enumerate() {
+            let l = p.located.expect("paired");
+            assert_eq!(l.segment, 0, "node {i} from {start:?}: {l:?}");
+            assert!(l.gap.abs() <= 1e-3 + 1e-15);
+        }
+    }
+}
+
+#[test]
+fn a_penetrating_node_near_the_corner_takes_the_nearer_face() {
+    let m = block_model(&[[6.52, -0.3], [6.9, -0.01]]);
+    for start in [None, Some(0), Some(1)] {
+        let p = locate_all(&m, start);
+        assert_eq!(p[0].located.unwrap().segment, 1, "near the wall, from {start:?}");
+        assert_eq!(p[1].located.unwrap().segment, 0, "near the top, from {start:?}");
+    }
+}
+
+#[test]
+fn the_vertex_region_and_free_ends_pair_nothing() {
+    // up-left of the corner (convex vertex region), beyond the top's free end, below the
+    // wall's free end
+    let m = block_model(&[[6.3, 0.2], [20.3, -0.1], [6.6, -40.2]]);
+    for start in [None, Some(0), Some(1)] {
+        for (i, p) in locate_all(&m, start).iter().enumerate() {
+            assert!(p.located.is_none(), "point {i} from {start:?}: {p:?}");
+        }
+    }
+}
+
+#[test]
+fn a_point_beyond_the_search_radius_is_not_paired() {
+    let m = block_model(&[[3.0, -5.0], [10.0, 2.0]]);
+    for p in locate_all(&m, None) {
+        assert_eq!(p, Pairing::default());
+    }
+}
