@@ -4,6 +4,7 @@
 pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};
+use crate::element::material::Material;
 use crate::element::quad::{quad_residual_tangent, ElementError};
 use crate::model::Model;
 use sparse::SparseMatrix;
@@ -43,6 +44,23 @@ impl DofMap {
     }
 }
 
+/// `100 ε_mach √Σ_e (E_e h_e)²`, `E_e` Young's modulus, `h_e` the longest edge.
+fn material_floor(model: &Model) -> f64 {
+    let mut sum = 0.0;
+    for el in &model.elements {
+        let (Material::SaintVenantKirchhoff { lambda, mu } | Material::NeoHookean { lambda, mu }) =
+            model.bodies[el.body].material;
+        let young = mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
+        let mut h = 0.0f64;
+        for i in 0..4 {
+            let (a, b) = (model.nodes[el.nodes[i]], model.nodes[el.nodes[(i + 1) % 4]]);
+            h = h.max((a[0] - b[0]).hypot(a[1] - b[1]));
+        }
+        sum += (young * h).powi(2);
+    }
+    100.0 * f64::EPSILON * sum.sqrt()
+}
+
 /// An element could not be evaluated.
 #[derive(Debug, Clone, thiserror::Error)]
 #[error("element {element}: {source}")]
@@ -62,6 +80,10 @@ pub struct Assembler {
     pub r_full: Vec<f64>,
     /// Sum of the absolute element and contact contributions per DOF (round-off scale).
     r_abs: Vec<f64>,
+    /// Round-off level of the internal forces from the materials: `100 ε_mach √Σ (E_e h_e)²`
+    /// (`F = I + ∇u` loses the digits of a small strain below `ε_mach`, so an element's force
+    /// is resolved to about `ε_mach E h` per unit thickness whatever its deformation).
+    material_floor: f64,
     /// Stored energy of the elements at the last assembly.
     pub energy: f64,
     missing: Vec<(usize, usize)>,
@@ -90,6 +112,7 @@ impl Assembler {
             elem_slots: Vec::new(),
             r_full: vec![0.0; model.dof_count()],
             r_abs: vec![0.0; model.dof_count()],
+            material_floor: material_floor(model),
             energy: 0.0,
             missing: Vec::new(),
         };
@@ -201,8 +224,9 @@ impl Assembler {
         Ok(())
     }
 
-    /// Round-off level of the free residual: `1e-13 ‖Σ|r_e|‖` over the free DOFs, the
-    /// norm of the summed absolute contributions (a residual below it is noise).
+    /// Round-off level of the free residual: the larger of `1e-13 ‖Σ|r_e|‖` over the free
+    /// DOFs (the norm of the summed absolute contributions) and the materials' floor (see
+    /// `material_floor`); a residual below it is noise.
     pub fn roundoff(&self) -> f64 {
         let s: f64 = self
             .dofs
@@ -212,7 +236,7 @@ impl Assembler {
             .filter(|(e, _)| e.is_some())
             .map(|(_, a)| a * a)
             .sum();
-        1e-13 * s.sqrt()
+        (1e-13 * s.sqrt()).max(self.material_floor)
     }
 
     /// Residual restricted to the free equations.

@@ -28,7 +28,9 @@
 //!    segment that C presses on (paired, `ζ < 0`) are not paired with the outline's pieces
 //!    next to that vertex: the corner contact supports them, and the vertex is counted once,
 //!    not twice. When C is open (e.g. the strip's end rests on the block's top beyond C),
-//!    the nodes meet the outline themselves.
+//!    the nodes meet the outline themselves. When C has just passed the face's free end, the
+//!    face's end node goes round the corner: it is paired with the piece after the vertex
+//!    (the wall), which pushes it off the block, not with the piece before it.
 //! 5. **Reach.** Points farther than the pair's search radius from the surface (derived from
 //!    the mesh by default) are not paired, so a point never meets the far side of a thin body.
 
@@ -164,8 +166,14 @@ pub fn exclude_owned_vertices(cfg: &Config, pairings: &mut [Vec<Pairing>]) {
                     .located
                     .is_some_and(|l| (before && l.segment + 1 == owned.vertex) || (after && l.segment == owned.vertex));
                 if near && matches!(slave, Slave::Node(n) if supported.contains(n)) {
-                    p.located = None;
-                    p.excluded = true;
+                    if after {
+                        p.located = None;
+                        p.excluded = true;
+                    } else {
+                        // the face's end node going round the corner: handed to the piece
+                        // after the vertex (the wall), which pushes it off the block
+                        *p = held(cfg, pair, *slave, Some(owned.vertex));
+                    }
                 }
             }
         }

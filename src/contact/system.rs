@@ -77,6 +77,9 @@ pub struct ContactSystem {
     /// Decisions held fixed by the solver for the rest of the increment (chattering
     /// points): the segment is kept and the state is the kernel's `forced` state.
     frozen: Vec<Vec<Option<Decision>>>,
+    /// Verification of frozen points: their states are free again, their segments are kept
+    /// where the projection is still (to 1 %) on the segment.
+    verifying: bool,
 }
 
 /// A point's contact decision at one iterate: its state and the segment it is tracked on.
@@ -269,6 +272,7 @@ impl ContactSystem {
             pairings,
             grids: vec![None; model.contacts.len()],
             frozen,
+            verifying: false,
         }
     }
 
@@ -285,6 +289,14 @@ impl ContactSystem {
     /// Release every frozen point.
     pub fn unfreeze(&mut self) {
         self.frozen.iter_mut().flatten().for_each(|f| *f = None);
+        self.verifying = false;
+    }
+
+    /// Start verifying the frozen points: states decided by the data again, segments kept
+    /// where the point still projects onto them (a point at a concave kink has two valid
+    /// closest points; the held one is as admissible as the walk's).
+    pub fn verify_frozen(&mut self) {
+        self.verifying = true;
     }
 
     /// Number of frozen points.
@@ -314,9 +326,13 @@ impl ContactSystem {
     /// (active-set changes; the order is pairs, then slaves).
     pub fn signature_into(&self, out: &mut Vec<Decision>) {
         out.clear();
-        out.extend(self.current.iter().flatten().map(|p| Decision {
-            state: p.eval.map_or(ContactState::Open, |e| e.state),
-            segment: p.segment,
+        // the segment an open point is tracked on changes nothing in the residual
+        out.extend(self.current.iter().flatten().map(|p| {
+            let state = p.eval.map_or(ContactState::Open, |e| e.state);
+            Decision {
+                state,
+                segment: p.segment.filter(|_| state != ContactState::Open),
+            }
         }));
     }
 
@@ -345,7 +361,11 @@ impl ContactSystem {
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 if let Some(f) = self.frozen[ip][is] {
-                    self.pairings[ip][is] = pairing::held(cfg, pair, slave, f.segment);
+                    let held = pairing::held(cfg, pair, slave, f.segment);
+                    let admissible = held.located.is_some_and(|l| l.xi.abs() <= 1.01);
+                    if !self.verifying || admissible {
+                        self.pairings[ip][is] = held;
+                    }
                 }
             }
         }
@@ -376,7 +396,9 @@ impl ContactSystem {
                     _ => None,
                 };
                 let (mut problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
-                problem.forced = self.frozen[ip][is].map(|f| f.state);
+                if !self.verifying {
+                    problem.forced = self.frozen[ip][is].map(|f| f.state);
+                }
                 let nd = 2 * slots.nodes.len();
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);

@@ -139,8 +139,8 @@ pub fn solve_increment(
                     frozen: ws.frozen.iter().filter(|f| **f).count(),
                 });
             }
-            // release the frozen points and check the state they held
-            state.contact.unfreeze();
+            // release the frozen states (keeping admissible segments) and check them
+            state.contact.verify_frozen();
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
             asm.free_residual(&mut ws.r);
             let rv = norm(&ws.r);
@@ -157,6 +157,7 @@ pub fn solve_increment(
                 return Err(NewtonFailure::FrozenNotVerified { residual: rv });
             }
             // go on from here with every point free to choose (no more freezing)
+            state.contact.unfreeze();
             verified_once = true;
             freezing = false;
             e0 = 0.0;
