@@ -11,6 +11,7 @@ pub mod analysis;
 pub mod assembly;
 pub mod contact;
 pub mod element;
+pub mod format;
 pub mod model;
 pub mod record;
 pub mod scene;

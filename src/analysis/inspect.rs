@@ -1,6 +1,7 @@
 //! `contrail inspect`: what a recording holds and how its run ended.
 
 use super::recording::Recording;
+use crate::format::{compact_list, count, plain};
 use crate::record::{LogLevel, Outcome};
 use serde::Serialize;
 use std::fmt::Write;
@@ -37,7 +38,11 @@ pub struct InspectReport {
     pub increments: usize,
     pub final_t: f64,
     pub end: f64,
+    /// Every Newton iteration recorded on `/iteration`, failed attempts included (the count
+    /// `contrail run` prints as "in all").
     pub newton_iterations: usize,
+    /// Iterations of the converged increments (sum of `/increment` `iterations`).
+    pub converged_iterations: usize,
     pub cutbacks: usize,
     /// `completed`, `failed`, `interrupted`, or `unknown` (no outcome message).
     pub status: String,
@@ -69,18 +74,18 @@ pub fn inspect(r: &Recording) -> InspectReport {
         }) => (
             "failed".into(),
             format!(
-                "increment {increment} at t = {t}: {reason} (last residuals {})",
-                residuals
-                    .iter()
-                    .map(|x| format!("{x:.3e}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                "increment {increment} at t = {}: {reason} (last residuals {})",
+                plain(*t),
+                compact_list(residuals, 8)
             ),
             Some(*increment),
         ),
         Some(Outcome::Interrupted { increment, t }) => (
             "interrupted".into(),
-            format!("interrupted during increment {increment} (last converged t = {t})"),
+            format!(
+                "interrupted during increment {increment} (last converged t = {})",
+                plain(*t)
+            ),
             Some(*increment),
         ),
         None => ("unknown".into(), "the recording has no outcome message".into(), None),
@@ -132,12 +137,21 @@ pub fn inspect(r: &Recording) -> InspectReport {
             .model
             .contacts
             .iter()
-            .map(|p| format!("{}: {} slaves on {} ({})", p.name, p.slaves.len(), p.master, p.transfer))
+            .map(|p| {
+                format!(
+                    "{}: {} on {} ({})",
+                    p.name,
+                    count(p.slaves.len(), "slave", "slaves"),
+                    p.master,
+                    p.transfer
+                )
+            })
             .collect(),
         increments: r.increments.len(),
         final_t: last.map_or(0.0, |i| i.t),
         end: r.model.end,
         newton_iterations: r.iterations.len(),
+        converged_iterations: r.increments.iter().map(|i| i.iterations).sum(),
         cutbacks: r.increments.iter().map(|i| i.cutbacks).sum(),
         status,
         stopped,
@@ -178,19 +192,29 @@ pub fn render(s: &InspectReport) -> String {
         "written by",
         format!("{} (contrail {}, git {})", s.writer, s.crate_version, s.git_revision),
     );
-    row("model", format!("{} nodes, {} elements", s.nodes, s.elements));
+    row(
+        "model",
+        format!(
+            "{}, {}",
+            count(s.nodes, "node", "nodes"),
+            count(s.elements, "element", "elements")
+        ),
+    );
     for p in &s.contact_pairs {
         row("contact pair", p.clone());
     }
     row(
         "increments",
-        format!("{} to t = {} of {}", s.increments, s.final_t, s.end),
+        format!("{} to t = {} of {}", s.increments, plain(s.final_t), plain(s.end)),
     );
     row(
         "newton",
         format!(
-            "{} iterations (failed attempts included), {} cut-backs",
-            s.newton_iterations, s.cutbacks
+            "{} in all: {} in converged increments, {} in failed attempts; {}",
+            count(s.newton_iterations, "iteration", "iterations"),
+            s.converged_iterations,
+            s.newton_iterations.saturating_sub(s.converged_iterations),
+            count(s.cutbacks, "cut-back", "cut-backs")
         ),
     );
     row("ended", s.status.clone());
@@ -201,7 +225,14 @@ pub fn render(s: &InspectReport) -> String {
         "first failure",
         s.first_failure.map_or("none".into(), |i| format!("increment {i}")),
     );
-    row("log", format!("{} warnings, {} errors", s.warnings, s.errors));
+    row(
+        "log",
+        format!(
+            "{}, {}",
+            count(s.warnings, "warning", "warnings"),
+            count(s.errors, "error", "errors")
+        ),
+    );
     if let Some(l) = &s.last_log {
         row("last log", l.clone());
     }
@@ -229,6 +260,10 @@ pub fn render(s: &InspectReport) -> String {
     for (topic, n) in &s.message_counts {
         let _ = writeln!(o, "  {topic:<12} {n:>9}");
     }
-    let _ = writeln!(o, "  (positions every {} increments)", s.positions_every);
+    let every = match s.positions_every.as_str() {
+        "1" => "every increment".to_string(),
+        n => format!("every {n} increments"),
+    };
+    let _ = writeln!(o, "  (positions {every})");
     o
 }

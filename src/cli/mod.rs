@@ -8,6 +8,8 @@ mod progress;
 mod replay;
 mod run;
 mod scenes;
+mod suggest;
+mod summary;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -22,13 +24,14 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// List the built-in scenes.
-    Scenes,
+    /// List the built-in scenes, or print one as a template (`--show NAME`).
+    Scenes(scenes::ScenesArgs),
     /// Run a scene (a built-in name or a TOML file).
     Run(run::RunArgs),
     /// Validate a scene without running it.
     Check(check::CheckArgs),
-    /// Draw load–displacement curves of several runs (CSV files from `run --out`) on one chart.
+    /// Draw load–displacement curves of several runs (MCAP recordings or CSV files from
+    /// `run --out`) on one chart.
     Plot(plot::PlotArgs),
     /// Print the JSON Schema of the scene format.
     Schema,
@@ -63,9 +66,36 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
     1
 }
 
+/// Parse the command line; an unknown subcommand that clap has no suggestion for gets ours
+/// (clap's similarity measure misses short ones such as `rn` for `run`).
+pub fn parse() -> Cli {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    use clap::CommandFactory;
+    match Cli::try_parse() {
+        Ok(c) => c,
+        Err(mut e) => {
+            if e.kind() == ErrorKind::InvalidSubcommand && e.get(ContextKind::SuggestedSubcommand).is_none() {
+                let cmd = Cli::command();
+                let typed = match e.get(ContextKind::InvalidSubcommand) {
+                    Some(ContextValue::String(s)) => s.clone(),
+                    _ => String::new(),
+                };
+                let names: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
+                if let Some(s) = suggest::closest(&typed, names.iter().map(String::as_str)) {
+                    e.insert(
+                        ContextKind::SuggestedSubcommand,
+                        ContextValue::Strings(vec![s.to_string()]),
+                    );
+                }
+            }
+            e.exit()
+        }
+    }
+}
+
 pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Command::Scenes => scenes::list(),
+        Command::Scenes(a) => scenes::scenes(a),
         Command::Run(a) => run::run(a),
         Command::Check(a) => check::check(a),
         Command::Plot(a) => plot::plot(a),

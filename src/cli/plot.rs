@@ -1,11 +1,17 @@
+//! `contrail plot`: load–displacement curves of several runs on one chart, from CSV files of
+//! `run --out FILE.csv` or directly from MCAP recordings.
+
 use super::BadInput;
 use contrail::analysis::plot::{line_chart, Series};
-use std::path::PathBuf;
+use contrail::analysis::recording::Recording;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(clap::Args, Debug)]
 pub struct PlotArgs {
-    /// CSV files written by `contrail run --out FILE.csv`, each optionally `FILE.csv=LABEL`.
+    /// Runs to draw: MCAP recordings (`run --out FILE.mcap`) or CSV files (`run --out
+    /// FILE.csv`), each optionally `FILE=LABEL`.
     #[arg(required = true)]
     pub runs: Vec<String>,
     /// Output chart (.svg or .png).
@@ -19,17 +25,53 @@ pub struct PlotArgs {
     pub y_label: String,
 }
 
-fn read(spec: &str) -> anyhow::Result<Series> {
-    let (path, label) = match spec.split_once('=') {
+fn split(spec: &str) -> (String, String) {
+    match spec.split_once('=') {
         Some((p, l)) => (p.to_string(), l.to_string()),
         None => (
             spec.to_string(),
-            std::path::Path::new(spec)
+            Path::new(spec)
                 .file_stem()
                 .map_or(spec.to_string(), |s| s.to_string_lossy().into_owned()),
         ),
+    }
+}
+
+/// The load–displacement series of a recording: the `/increment` monitor records, with a
+/// marker at every increment with a crossing.
+pub fn from_recording(r: &Recording, label: String) -> Result<Series, BadInput> {
+    let crossed: BTreeSet<usize> = r.crossings.iter().map(|c| c.increment).collect();
+    let mut s = Series {
+        label,
+        points: Vec::new(),
+        markers: Vec::new(),
     };
-    let text = std::fs::read_to_string(&path).map_err(|e| BadInput(format!("{path}: cannot read: {e}")))?;
+    for inc in &r.increments {
+        if let Some(m) = &inc.monitor {
+            let p = (m.displacement, m.force);
+            s.points.push(p);
+            if crossed.contains(&inc.increment) {
+                s.markers.push(p);
+            }
+        }
+    }
+    if s.points.is_empty() && !r.increments.is_empty() {
+        return Err(BadInput(format!(
+            "{}: the scene `{}` has no [monitor], so the recording has no load–displacement pair",
+            r.path,
+            r.scene()
+        )));
+    }
+    Ok(s)
+}
+
+fn read_csv(path: &str, label: String) -> anyhow::Result<Series> {
+    let bytes = std::fs::read(path).map_err(|e| BadInput(format!("{path}: cannot read: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        BadInput(format!(
+            "{path}: not a text (CSV) file\n  hint: contrail plot reads .csv and .mcap files"
+        ))
+    })?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
     let col = |n: &str| header.iter().position(|h| *h == n);
@@ -58,6 +100,17 @@ fn read(spec: &str) -> anyhow::Result<Series> {
         }
     }
     Ok(s)
+}
+
+fn read(spec: &str) -> anyhow::Result<Series> {
+    let (path, label) = split(spec);
+    let mcap = Path::new(&path).extension().is_some_and(|e| e == "mcap")
+        || std::fs::read(&path).is_ok_and(|b| b.starts_with(b"\x89MCAP"));
+    if mcap {
+        let r = Recording::open(Path::new(&path)).map_err(|e| BadInput(e.to_string()))?;
+        return Ok(from_recording(&r, label)?);
+    }
+    read_csv(&path, label)
 }
 
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {

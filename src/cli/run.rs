@@ -1,5 +1,9 @@
+//! `contrail run`: solve a scene, write the requested files, and say how it went.
+
 use super::progress::Progress;
+use super::summary::{inspect_hint, progress_lines, Tracker};
 use super::{BadInput, RunFailed};
+use contrail::format::{compact_list, plain};
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
@@ -7,7 +11,7 @@ use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::{Fanout, Observer};
 use contrail::solver::{run as solve, SolveError};
 use std::io::{BufWriter, IsTerminal};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -17,9 +21,10 @@ pub struct RunArgs {
     /// Built-in scene name or path to a scene TOML file.
     pub scene: String,
     /// Write the run to FILE: `.csv` (load–displacement history), `.jsonl` (every record) or
-    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks).
+    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks). Repeatable:
+    /// `--out run.mcap --out run.csv`.
     #[arg(long, value_name = "FILE")]
-    pub out: Option<PathBuf>,
+    pub out: Vec<PathBuf>,
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
@@ -33,7 +38,7 @@ pub struct RunArgs {
     pub quiet: bool,
 }
 
-fn open(path: &PathBuf) -> anyhow::Result<BufWriter<std::fs::File>> {
+fn open(path: &Path) -> anyhow::Result<BufWriter<std::fs::File>> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
             .map_err(|e| BadInput(format!("{}: cannot create directory: {e}", dir.display())))?;
@@ -42,7 +47,29 @@ fn open(path: &PathBuf) -> anyhow::Result<BufWriter<std::fs::File>> {
     Ok(BufWriter::new(f))
 }
 
+fn sink(path: &Path, positions_every: u64) -> anyhow::Result<Box<dyn Observer>> {
+    let name = path.display().to_string();
+    Ok(match path.extension().and_then(|e| e.to_str()) {
+        Some("csv") => Box::new(CsvSink::new(open(path)?, &name)),
+        Some("jsonl") => Box::new(JsonlSink::new(open(path)?, &name)),
+        Some("mcap") => {
+            let opts = McapOptions {
+                positions_every: positions_every as usize,
+                ..McapOptions::default()
+            };
+            Box::new(McapSink::new(open(path)?, &name, opts).map_err(|e| BadInput(e.to_string()))?)
+        }
+        _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
+    })
+}
+
 pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
+    super::scenes::check_scene_arg(&a.scene)?;
+    for (i, p) in a.out.iter().enumerate() {
+        if a.out[..i].contains(p) {
+            return Err(BadInput(format!("--out {} is given twice", p.display())).into());
+        }
+    }
     let (src, model) = contrail::load_scene(&a.scene, &a.sets)?;
     let info = contrail::run_info(&src, &a.sets, &model);
     let stop = Arc::new(AtomicBool::new(false));
@@ -52,66 +79,93 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
     }
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
-    if let Some(path) = &a.out {
-        let name = path.display().to_string();
-        match path.extension().and_then(|e| e.to_str()) {
-            Some("csv") => sinks.push(Box::new(CsvSink::new(open(path)?, &name))),
-            Some("jsonl") => sinks.push(Box::new(JsonlSink::new(open(path)?, &name))),
-            Some("mcap") => {
-                let opts = McapOptions {
-                    positions_every: a.positions_every as usize,
-                    ..McapOptions::default()
-                };
-                sinks.push(Box::new(
-                    McapSink::new(open(path)?, &name, opts).map_err(|e| BadInput(e.to_string()))?,
-                ));
-            }
-            _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
-        }
+    for path in &a.out {
+        sinks.push(sink(path, a.positions_every)?);
     }
     let targets = a.rerun.targets();
     if targets.any() {
         let stream = rerun_sink::open(&targets, &model.name).map_err(|e| BadInput(e.to_string()))?;
         sinks.push(Box::new(RerunSink::new(stream, "rerun")));
     }
-    if !a.quiet && std::io::stdout().is_terminal() {
+    if !a.quiet && std::io::stderr().is_terminal() {
         sinks.push(Box::new(Progress::new(model.stepping.end)));
     }
-    let mut fan = Fanout {
-        sinks: sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect(),
+    let mut tracker = Tracker::default();
+    let result = {
+        let mut fan = Fanout {
+            sinks: sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect(),
+        };
+        fan.sinks.push(&mut tracker);
+        solve(&model, &info, &mut fan, &stop)
     };
-    let result = solve(&model, &info, &mut fan, &stop);
-    match result {
-        Ok(s) => {
-            println!("scene        {} ({})", model.name, src.origin);
-            println!("transfer     {}", info.transfer.join(", "));
-            println!("increments   {} to t = {}", s.increments, s.t);
-            println!(
-                "newton       {} iterations ({:.2} per increment), {} cut-backs",
-                s.newton_iterations,
-                s.newton_iterations as f64 / s.increments.max(1) as f64,
-                s.cutbacks
+    let mcap = a.out.iter().find(|p| p.extension().is_some_and(|e| e == "mcap"));
+    let mut o = String::new();
+    let row = |o: &mut String, k: &str, v: String| o.push_str(&format!("{k:<12} {v}\n"));
+    row(&mut o, "scene", format!("{} ({})", model.name, src.origin));
+    row(&mut o, "transfer", info.transfer.join(", "));
+    match &result {
+        Ok(_) => row(&mut o, "ended", "completed".into()),
+        Err(SolveError::StepFailed {
+            increment,
+            t,
+            dt,
+            cutbacks,
+            reason,
+            residuals,
+        }) => {
+            row(&mut o, "ended", "FAILED".into());
+            row(
+                &mut o,
+                "stopped",
+                format!(
+                    "increment {increment} at t = {} (step {}, after {}): {reason}",
+                    plain(*t),
+                    plain(*dt),
+                    contrail::format::count(*cutbacks, "cut-back", "cut-backs")
+                ),
             );
-            println!("crossings    {}", s.crossings);
-            println!("wall time    {:.3} s", s.wall_time_s);
-            if let Some(m) = &s.monitor {
-                println!(
-                    "final point  {} = {:.6e}, force = {:.6e}",
-                    m.label, m.displacement, m.force
-                );
-            }
-            if let Some(p) = &a.out {
-                println!("written      {}", p.display());
-            }
-            if let Some(p) = &a.rerun.rerun_save {
-                println!("written      {}", p.display());
-            }
-            Ok(ExitCode::SUCCESS)
+            row(&mut o, "residuals", compact_list(residuals, 8));
+            tracker.cutbacks += cutbacks;
         }
+        Err(SolveError::Interrupted { increment, .. }) => {
+            row(&mut o, "ended", format!("interrupted during increment {increment}"))
+        }
+        Err(SolveError::Observer(e)) => row(&mut o, "ended", format!("recording failed: {e}")),
+    }
+    progress_lines(&mut o, &tracker);
+    if let Ok(s) = &result {
+        row(
+            &mut o,
+            "wall time",
+            format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
+        );
+    }
+    for p in &a.out {
+        row(&mut o, "written", p.display().to_string());
+    }
+    if let Some(p) = &a.rerun.rerun_save {
+        row(
+            &mut o,
+            "written",
+            format!("{} (view it with `rerun {}`)", p.display(), p.display()),
+        );
+    }
+    if result.is_err() || mcap.is_some() {
+        row(&mut o, "inspect", inspect_hint(mcap.map(PathBuf::as_path), &model.name));
+    }
+    print!("{o}");
+    match result {
+        Ok(_) => Ok(ExitCode::SUCCESS),
         Err(e) => {
             let interrupted = matches!(e, SolveError::Interrupted { .. });
-            let mut message = format!("{} ({}): {e}", model.name, src.origin);
-            if let Some(p) = &a.out {
+            let what = match &e {
+                SolveError::StepFailed {
+                    increment, t, reason, ..
+                } => format!("increment {increment} failed at t = {}: {reason}", plain(*t)),
+                other => other.to_string(),
+            };
+            let mut message = format!("{} ({}): {what}", model.name, src.origin);
+            if let Some(p) = mcap {
                 message.push_str(&format!("\n  the record up to this point is in {}", p.display()));
             }
             Err(RunFailed { message, interrupted }.into())

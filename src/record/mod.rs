@@ -8,7 +8,9 @@ pub mod mcap_sink;
 pub mod messages;
 mod observer;
 pub mod real;
+mod rerun_curve;
 pub mod rerun_sink;
+mod rerun_style;
 mod rerun_view;
 pub mod schemas;
 

@@ -1,7 +1,7 @@
 //! rerun stream of a run: the deformed mesh, rigid surfaces, contact points and traction
-//! arrows in a 2D view, load–displacement and Newton residual time series, and a text log of
-//! crossings and messages, on the timelines `increment`, `load` (the load level `t`, shown
-//! as a duration in seconds) and `newton` (a running count of Newton iterations).
+//! arrows in a 2D view (y up), the force–displacement curve in a second 2D view, Newton
+//! residuals and a text log of crossings and messages, on the timelines `increment`
+//! (default) and `newton` (a running count of Newton iterations).
 //!
 //! [`RerunView`] logs from records alone, so `contrail replay` rebuilds the same stream from
 //! an MCAP recording; [`RerunSink`] is the observer that feeds it during a run.
@@ -11,7 +11,11 @@ pub use super::rerun_view::{RerunView, FLUSH_TIMEOUT};
 use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use super::{Observer, ObserverError, RunInfo, StepView};
 use crate::model::Model;
-use rerun::blueprint::{Blueprint, Horizontal, Spatial2DView, TextLogView, TimeSeriesView, Vertical};
+use rerun::blueprint::components::{PanelState, PlayState};
+use rerun::blueprint::{
+    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial2DView, TextLogView, TimePanel, TimeSeriesView,
+    Vertical,
+};
 use rerun::{RecordingStream, RecordingStreamBuilder};
 use std::path::PathBuf;
 
@@ -49,27 +53,45 @@ fn stream_err(e: impl std::fmt::Display) -> RerunError {
     RerunError::Stream(e.to_string())
 }
 
-/// The default layout: the model on the left; load–displacement, Newton residuals and the
-/// event log stacked on the right.
+/// The default layout, sized for a laptop screen (side and selection panels collapsed, time
+/// panel on the `increment` timeline following the latest increment): the model and the
+/// event log on the left; the force–displacement curve, the Newton residuals and the load
+/// level stacked on the right.
 pub fn blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
-            Spatial2DView::new("model")
-                .with_origin("/")
-                .with_contents(["+ /model/**", "+ /rigid/**", "+ /contact/**"])
-                .into(),
             Vertical::new([
-                TimeSeriesView::new("load–displacement")
-                    .with_origin("/plots/load")
-                    .into(),
-                TimeSeriesView::new("Newton residuals")
-                    .with_origin("/plots/newton")
+                Spatial2DView::new("model (y up)")
+                    .with_origin("/")
+                    .with_contents(["+ /scene/**"])
                     .into(),
                 TextLogView::new("events").with_origin("/events").into(),
             ])
+            .with_row_shares(vec![0.74, 0.26])
+            .into(),
+            Vertical::new([
+                Spatial2DView::new("force–displacement")
+                    .with_origin("/")
+                    .with_contents(["+ /curve/**"])
+                    .into(),
+                TimeSeriesView::new("Newton: per increment (timeline increment), per iteration (timeline newton)")
+                    .with_origin("/plots")
+                    .with_contents(["+ /plots/increment/**", "+ /plots/newton"])
+                    .into(),
+                TimeSeriesView::new("load level t").with_origin("/plots/load").into(),
+            ])
+            .with_row_shares(vec![0.46, 0.32, 0.22])
             .into(),
         ])
-        .with_column_shares(vec![0.62, 0.38]),
+        .with_column_shares(vec![0.6, 0.4]),
+    )
+    .with_blueprint_panel(BlueprintPanel::from_state(PanelState::Collapsed))
+    .with_selection_panel(SelectionPanel::from_state(PanelState::Collapsed))
+    .with_time_panel(
+        TimePanel::new()
+            .with_state(PanelState::Collapsed)
+            .with_timeline("increment")
+            .with_play_state(PlayState::Following),
     )
 }
 

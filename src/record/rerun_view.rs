@@ -1,10 +1,20 @@
 //! The rerun view of a run: what is logged where, from records alone (so a replay of an MCAP
 //! recording gives the same stream as the run).
+//!
+//! Entities: `/scene/**` (the model, y up through one static transform on `/scene`),
+//! `/curve/**` (the force–displacement curve, see [`super::rerun_curve`]), `/plots/newton`
+//! (per Newton iteration, timeline `newton` only), `/plots/increment/**` (per increment:
+//! Newton iterations, final residual, load level; timeline `increment` only) and `/events/**`.
 
 use super::messages::{ModelRecord, PositionsMessage};
+use super::rerun_curve::Curve;
 use super::rerun_sink::RerunError;
+use super::rerun_style::{
+    point_colour, point_label, relative_residual, traction_arrows, TractionArrows, ARROW_FRACTION,
+    ARROW_OFFSET_FRACTION, MESH, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
+};
 use super::{ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome};
-use crate::contact::law::ContactState;
+use crate::format::{plain, sig};
 use rerun::RecordingStream;
 
 fn stream_err(e: impl std::fmt::Display) -> RerunError {
@@ -13,20 +23,6 @@ fn stream_err(e: impl std::fmt::Display) -> RerunError {
 
 /// How long `finish` waits for the sinks (a file is written well within it).
 pub const FLUSH_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
-
-const GREY: [u8; 4] = [150, 150, 150, 120];
-const MESH: [u8; 4] = [60, 120, 220, 255];
-const RIGID: [u8; 4] = [40, 40, 40, 255];
-const TRIAL: [u8; 4] = [230, 180, 30, 255];
-const RETURNED: [u8; 4] = [220, 40, 40, 255];
-
-fn state_colour(s: ContactState) -> [u8; 4] {
-    match s {
-        ContactState::Open => [160, 160, 160, 255],
-        ContactState::Stick => [30, 170, 60, 255],
-        ContactState::Slip => [240, 120, 20, 255],
-    }
-}
 
 fn p32(p: [f64; 2]) -> [f32; 2] {
     [p[0] as f32, p[1] as f32]
@@ -37,44 +33,51 @@ pub struct RerunView {
     rec: RecordingStream,
     model: ModelRecord,
     edges: Vec<[usize; 2]>,
-    /// Length of the longest arrow, and the largest traction seen so far (arrow scale).
+    /// Arrow length at the Coulomb limit and offset of the arrows from the face.
     arrow_len: f64,
-    traction_max: f64,
+    arrow_offset: f64,
+    curve: Curve,
+    /// Running count of Newton iterations (timeline `newton`).
     newton: i64,
+    /// Reference force of the last Newton iteration (for the final residual of an increment).
+    reference: f64,
 }
 
 impl RerunView {
-    /// Log the static data (reference mesh, rigid geometry, series styles).
+    /// Log the static data (the y-up transform, reference mesh, rigid geometry, series
+    /// styles).
     pub fn new(rec: RecordingStream, model: &ModelRecord) -> Result<Self, RerunError> {
         // no wall-clock timeline: a replay then gives the same stream as the run
         rec.set_log_time_enabled(false);
         rec.set_log_tick_enabled(false);
+        let e = stream_err;
         let edges = model.edges();
         let (lo, hi) = bbox(&model.nodes);
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
+        rec.log_static("scene", &rerun::Transform3D::from_scale(Y_UP_SCALE))
+            .map_err(e)?;
         let strips = |pos: &[[f64; 2]]| -> Vec<Vec<[f32; 2]>> {
             edges.iter().map(|e| vec![p32(pos[e[0]]), p32(pos[e[1]])]).collect()
         };
         rec.log_static(
-            "model/reference",
+            "scene/model/reference",
             &rerun::LineStrips2D::new(strips(&model.nodes))
-                .with_colors([GREY])
+                .with_colors([REFERENCE])
                 .with_radii([rerun::Radius::new_ui_points(0.5)]),
         )
-        .map_err(stream_err)?;
+        .map_err(e)?;
         let window = [[lo[0] - size, lo[1] - size], [hi[0] + size, hi[1] + size]];
         for r in &model.rigid {
-            let path = format!("rigid/{}", r.name);
+            let path = format!("scene/rigid/{}", r.name);
             if r.kind == "point" {
                 let pts: Vec<[f32; 2]> = r.pieces.iter().flatten().map(|p| p32(*p)).collect();
                 rec.log_static(
                     path,
                     &rerun::Points2D::new(pts)
                         .with_colors([RIGID])
-                        .with_labels([r.name.clone()])
-                        .with_radii([rerun::Radius::new_ui_points(4.0)]),
+                        .with_radii([rerun::Radius::new_ui_points(6.0)]),
                 )
-                .map_err(stream_err)?;
+                .map_err(e)?;
             } else {
                 let segs: Vec<Vec<[f32; 2]>> = r
                     .pieces
@@ -86,44 +89,56 @@ impl RerunView {
                     path,
                     &rerun::LineStrips2D::new(segs)
                         .with_colors([RIGID])
-                        .with_radii([rerun::Radius::new_ui_points(2.0)]),
+                        .with_radii([rerun::Radius::new_ui_points(3.0)]),
                 )
-                .map_err(stream_err)?;
+                .map_err(e)?;
             }
         }
         for (path, name) in [
-            ("plots/load/force", "monitor force"),
-            ("plots/load/displacement", "monitor displacement"),
-            ("plots/load/normal_force", "sum of normal forces"),
-            ("plots/newton/log10_residual", "log10 ‖R‖ / F_ref"),
-            ("plots/newton/iterations", "iterations per increment"),
+            ("plots/newton", "log10 ‖R‖/F_ref per iteration"),
+            ("plots/increment/iterations", "Newton iterations"),
+            ("plots/increment/final_residual", "log10 final ‖R‖/F_ref"),
+            ("plots/load/t", "load level t"),
         ] {
             rec.log_static(path, &rerun::SeriesLines::new().with_names([name]))
-                .map_err(stream_err)?;
+                .map_err(e)?;
         }
+        let (x_name, y_name) = match &model.monitor {
+            Some(m) => (m.clone(), "force".to_string()),
+            None => ("t".to_string(), "ΣN".to_string()),
+        };
+        let curve = Curve::new(&rec, &x_name, &y_name).map_err(e)?;
         Ok(RerunView {
             rec,
             model: model.clone(),
             edges,
-            arrow_len: 0.12 * size,
-            traction_max: 0.0,
+            arrow_len: ARROW_FRACTION * size,
+            arrow_offset: ARROW_OFFSET_FRACTION * size,
+            curve,
             newton: 0,
+            reference: 0.0,
         })
     }
 
-    fn time(&self, increment: usize, t: f64) {
+    /// Per-increment data: on `increment`, and on `newton` at the last iteration so that the
+    /// model stays visible on that timeline.
+    fn at_increment(&self, increment: usize) {
+        self.rec.reset_time();
         self.rec.set_time_sequence("increment", increment as i64);
-        self.rec.set_duration_secs("load", t);
         self.rec.set_time_sequence("newton", self.newton);
     }
 
+    /// One Newton iteration: its relative residual on the `newton` timeline only.
     pub fn iteration(&mut self, it: &IterationRecord) -> Result<(), RerunError> {
         self.newton += 1;
-        self.time(it.increment, it.t);
-        let rel = it.residual / it.reference.max(f64::MIN_POSITIVE);
-        if rel.is_finite() && rel > 0.0 {
+        if it.reference > 0.0 {
+            self.reference = it.reference;
+        }
+        self.rec.reset_time();
+        self.rec.set_time_sequence("newton", self.newton);
+        if let Some(rel) = relative_residual(it.residual, it.reference) {
             self.rec
-                .log("plots/newton/log10_residual", &rerun::Scalars::single(rel.log10()))
+                .log("plots/newton", &rerun::Scalars::single(rel.log10()))
                 .map_err(stream_err)?;
         }
         Ok(())
@@ -137,110 +152,37 @@ impl RerunView {
         contact: &[ContactPointRecord],
         crossings: &[CrossingRecord],
     ) -> Result<(), RerunError> {
-        self.time(inc.increment, inc.t);
         let e = stream_err;
+        self.at_increment(inc.increment);
         if let Some(p) = positions {
-            let strips: Vec<Vec<[f32; 2]>> = self
-                .edges
-                .iter()
-                .filter_map(|ed| Some(vec![p32(*p.nodes.get(ed[0])?), p32(*p.nodes.get(ed[1])?)]))
-                .collect();
-            self.rec
-                .log(
-                    "model/deformed",
-                    &rerun::LineStrips2D::new(strips)
-                        .with_colors([MESH])
-                        .with_radii([rerun::Radius::new_ui_points(1.0)]),
-                )
-                .map_err(e)?;
-            for (r, off) in self.model.rigid.iter().zip(&p.rigid_offsets) {
-                self.rec
-                    .log(
-                        format!("rigid/{}", r.name),
-                        &rerun::Transform3D::from_translation([off[0] as f32, off[1] as f32, 0.0]),
-                    )
-                    .map_err(e)?;
-            }
+            self.positions(p)?;
         }
-        if let Some(m) = &inc.monitor {
-            self.rec
-                .log("plots/load/force", &rerun::Scalars::single(m.force))
-                .map_err(e)?;
-            self.rec
-                .log("plots/load/displacement", &rerun::Scalars::single(m.displacement))
-                .map_err(e)?;
-        }
+        self.contact(contact, crossings)?;
         let total_n: f64 = contact.iter().map(|c| c.normal_force).filter(|x| x.is_finite()).sum();
-        self.rec
-            .log("plots/load/normal_force", &rerun::Scalars::single(total_n))
-            .map_err(e)?;
-        self.rec
-            .log(
-                "plots/newton/iterations",
-                &rerun::Scalars::single(inc.iterations as f64),
-            )
-            .map_err(e)?;
-        for c in contact {
-            if c.state != ContactState::Open {
-                self.traction_max = self.traction_max.max(c.trial_traction.abs()).max(c.traction.abs());
-            }
-        }
-        for (k, pair) in self.model.contacts.iter().enumerate() {
-            let pts: Vec<&ContactPointRecord> = contact
-                .iter()
-                .filter(|c| c.pair == k && c.position.iter().all(|x| x.is_finite()))
-                .collect();
-            let base = format!("contact/{}", pair.name);
-            self.rec
-                .log(
-                    format!("{base}/points"),
-                    &rerun::Points2D::new(pts.iter().map(|c| p32(c.position)))
-                        .with_colors(pts.iter().map(|c| state_colour(c.state)))
-                        .with_labels(
-                            pts.iter()
-                                .map(|c| c.segment.map_or("–".to_string(), |s| format!("s{s}"))),
-                        )
-                        .with_show_labels(true)
-                        .with_radii([rerun::Radius::new_ui_points(3.5)]),
-                )
-                .map_err(e)?;
-            let closed: Vec<&&ContactPointRecord> = pts
-                .iter()
-                .filter(|c| c.state != ContactState::Open && c.tangent.iter().all(|x| x.is_finite()))
-                .collect();
-            let scale = if self.traction_max > 0.0 {
-                self.arrow_len / self.traction_max
-            } else {
-                0.0
-            };
-            for (name, colour, value) in [
-                (
-                    "trial",
-                    TRIAL,
-                    (|c: &ContactPointRecord| c.trial_traction) as fn(&ContactPointRecord) -> f64,
-                ),
-                ("returned", RETURNED, |c: &ContactPointRecord| c.traction),
-            ] {
-                let vecs = closed.iter().map(|c| {
-                    let v = value(c) * scale;
-                    [(v * c.tangent[0]) as f32, (v * c.tangent[1]) as f32]
-                });
-                self.rec
-                    .log(
-                        format!("{base}/{name}"),
-                        &rerun::Arrows2D::from_vectors(vecs)
-                            .with_origins(closed.iter().map(|c| p32(c.position)))
-                            .with_colors([colour]),
-                    )
-                    .map_err(e)?;
-            }
-        }
+        let point = match &inc.monitor {
+            Some(m) => [m.displacement, m.force],
+            None => [inc.t, total_n],
+        };
+        self.curve.push(&self.rec, point, !crossings.is_empty()).map_err(e)?;
         for c in crossings {
             let pair = self.model.contacts.get(c.pair).map_or("?", |p| p.name.as_str());
+            let slave = self
+                .model
+                .contacts
+                .get(c.pair)
+                .and_then(|p| p.slaves.get(c.slave))
+                .map_or_else(|| c.slave.to_string(), Clone::clone);
             let text = format!(
-                "crossing {pair}/{}: segment {} → {}, ξ_A = {:.4}, ξ_B = {:.4}, Δρ = ({:.3e}, {:.3e}), trial {:.4e} → {:.4e}, returned {:.4e}",
-                c.slave, c.from_segment, c.to_segment, c.xi_from, c.xi_to, c.delta_rho[0], c.delta_rho[1],
-                c.trial_before, c.trial_after, c.returned_after
+                "crossing {pair}/{slave}: segment {} → {}, ξ_A = {}, ξ_B = {}, Δρ = ({}, {}), trial {} → {}, returned {}",
+                c.from_segment,
+                c.to_segment,
+                sig(c.xi_from, 4),
+                sig(c.xi_to, 4),
+                sig(c.delta_rho[0], 3),
+                sig(c.delta_rho[1], 3),
+                sig(c.trial_before, 4),
+                sig(c.trial_after, 4),
+                sig(c.returned_after, 4)
             );
             self.rec
                 .log(
@@ -249,12 +191,113 @@ impl RerunView {
                 )
                 .map_err(e)?;
         }
+        // the per-increment summary lives on `increment` only
+        self.rec.disable_timeline("newton");
+        self.rec
+            .log(
+                "plots/increment/iterations",
+                &rerun::Scalars::single(inc.iterations as f64),
+            )
+            .map_err(e)?;
+        if let Some(rel) = inc.residuals.last().and_then(|r| relative_residual(*r, self.reference)) {
+            self.rec
+                .log("plots/increment/final_residual", &rerun::Scalars::single(rel.log10()))
+                .map_err(e)?;
+        }
+        self.rec.log("plots/load/t", &rerun::Scalars::single(inc.t)).map_err(e)
+    }
+
+    fn positions(&mut self, p: &PositionsMessage) -> Result<(), RerunError> {
+        let e = stream_err;
+        let strips: Vec<Vec<[f32; 2]>> = self
+            .edges
+            .iter()
+            .filter_map(|ed| Some(vec![p32(*p.nodes.get(ed[0])?), p32(*p.nodes.get(ed[1])?)]))
+            .collect();
+        self.rec
+            .log(
+                "scene/model/deformed",
+                &rerun::LineStrips2D::new(strips)
+                    .with_colors([MESH])
+                    .with_radii([rerun::Radius::new_ui_points(1.0)]),
+            )
+            .map_err(e)?;
+        for (r, off) in self.model.rigid.iter().zip(&p.rigid_offsets) {
+            self.rec
+                .log(
+                    format!("scene/rigid/{}", r.name),
+                    &rerun::Transform3D::from_translation([off[0] as f32, off[1] as f32, 0.0]),
+                )
+                .map_err(e)?;
+        }
         Ok(())
     }
 
+    fn contact(&mut self, contact: &[ContactPointRecord], crossings: &[CrossingRecord]) -> Result<(), RerunError> {
+        let e = stream_err;
+        for (k, pair) in self.model.contacts.iter().enumerate() {
+            let pts: Vec<&ContactPointRecord> = contact
+                .iter()
+                .filter(|c| c.pair == k && c.position.iter().all(|x| x.is_finite()))
+                .collect();
+            let base = format!("scene/contact/{}", pair.name);
+            let labelled: Vec<(&ContactPointRecord, String)> = pts
+                .iter()
+                .filter_map(|c| {
+                    let from = crossings
+                        .iter()
+                        .find(|x| x.pair == k && x.slave == c.slave)
+                        .map(|x| x.from_segment);
+                    point_label(c, from).map(|l| (*c, l))
+                })
+                .collect();
+            let radius = rerun::Radius::new_ui_points(3.5);
+            self.rec
+                .log(
+                    format!("{base}/points"),
+                    &rerun::Points2D::new(pts.iter().map(|c| p32(c.position)))
+                        .with_colors(pts.iter().map(|c| point_colour(c.state, pair.mu)))
+                        .with_radii([radius]),
+                )
+                .map_err(e)?;
+            self.rec
+                .log(
+                    format!("{base}/labels"),
+                    &rerun::Points2D::new(labelled.iter().map(|(c, _)| p32(c.position)))
+                        .with_colors(labelled.iter().map(|(c, _)| point_colour(c.state, pair.mu)))
+                        .with_labels(labelled.iter().map(|(_, l)| l.clone()))
+                        .with_show_labels(true)
+                        .with_radii([radius]),
+                )
+                .map_err(e)?;
+            let arrows: Vec<TractionArrows> = pts
+                .iter()
+                .filter_map(|c| traction_arrows(c, pair.mu, self.arrow_len, self.arrow_offset))
+                .collect();
+            let origins: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.origin)).collect();
+            let trial: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.trial)).collect();
+            let returned: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.returned)).collect();
+            for (name, colour, radius, vectors) in
+                [("trial", TRIAL, 0.75, trial), ("returned", RETURNED, 2.0, returned)]
+            {
+                self.rec
+                    .log(
+                        format!("{base}/{name}"),
+                        &rerun::Arrows2D::from_vectors(vectors)
+                            .with_origins(origins.iter().copied())
+                            .with_colors([colour])
+                            .with_radii([rerun::Radius::new_ui_points(radius)]),
+                    )
+                    .map_err(e)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A log message (cut-back, failure) on the `increment` timeline.
     pub fn log(&mut self, l: &LogRecord) -> Result<(), RerunError> {
         if l.increment > 0 {
-            self.time(l.increment, l.t);
+            self.at_increment(l.increment);
         }
         // where a message falls among the Newton iterations is not recorded
         self.rec.disable_timeline("newton");
@@ -268,20 +311,24 @@ impl RerunView {
             .map_err(stream_err)
     }
 
+    /// How the run ended, as the last line of the event log.
     pub fn outcome(&mut self, o: &Outcome) -> Result<(), RerunError> {
         let (text, level) = match o {
             Outcome::Completed { increments, t } => (
-                format!("completed: {increments} increments to t = {t}"),
+                format!("completed: {increments} increments to t = {}", plain(*t)),
                 rerun::TextLogLevel::INFO,
             ),
             Outcome::Failed {
                 increment, t, reason, ..
             } => (
-                format!("failed in increment {increment} at t = {t}: {reason}"),
+                format!("failed in increment {increment} at t = {}: {reason}", plain(*t)),
                 rerun::TextLogLevel::ERROR,
             ),
             Outcome::Interrupted { increment, t } => (
-                format!("interrupted during increment {increment} (last converged t = {t})"),
+                format!(
+                    "interrupted during increment {increment} (last converged t = {})",
+                    plain(*t)
+                ),
                 rerun::TextLogLevel::WARN,
             ),
         };
