@@ -8,6 +8,8 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    // first thing: a signal from now on is handled (see `cli::signal`)
+    cli::signal::install();
     let args = cli::Cli::parse();
     match cli::dispatch(args) {
         Ok(code) => code,

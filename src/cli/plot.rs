@@ -1,3 +1,4 @@
+use super::out::outln;
 use super::BadInput;
 use contrail::analysis::plot::{line_chart, Series};
 use std::path::PathBuf;
@@ -63,6 +64,6 @@ fn read(spec: &str) -> anyhow::Result<Series> {
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
     let series = a.runs.iter().map(|r| read(r)).collect::<anyhow::Result<Vec<_>>>()?;
     line_chart(&a.out, &a.title, &a.x_label, &a.y_label, &series).map_err(|e| BadInput(e.to_string()))?;
-    println!("written {}", a.out.display());
+    outln!("written {}", a.out.display())?;
     Ok(ExitCode::SUCCESS)
 }
