@@ -7,6 +7,8 @@ mod cli;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    // first thing: a signal from now on is handled (see `cli::signal`)
+    cli::signal::install();
     let args = cli::parse();
     match cli::dispatch(args) {
         Ok(code) => code,

@@ -1,6 +1,9 @@
 //! Post-processing of results (summaries, plots).
 
+pub mod chunks;
 pub mod diff;
 pub mod inspect;
 pub mod plot;
 pub mod recording;
+pub mod recover;
+pub mod validate_records;

@@ -2,6 +2,8 @@
 //! `replay` and the tests). Anything that is not a complete contrail recording is an error
 //! with a message that says why, never a panic.
 
+use super::chunks::{expand, split};
+use super::validate_records::{check_model, check_records};
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
 use crate::record::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
@@ -15,7 +17,7 @@ use std::path::Path;
 pub enum RecordingError {
     #[error("{path}: cannot read: {source}")]
     Read { path: String, source: std::io::Error },
-    #[error("{path}: not a readable MCAP file (truncated or corrupt): {source}")]
+    #[error("{path}: not a readable MCAP file (truncated or corrupt): {source}\n  hint: the file of a run that was killed is unfinished; `contrail recover {path} FIXED.mcap` salvages its complete chunks")]
     Corrupt { path: String, source: mcap::McapError },
     #[error("{path}: not a contrail recording ({detail})")]
     NotContrail { path: String, detail: String },
@@ -34,6 +36,8 @@ pub enum RecordingError {
     },
     #[error("{path}: {what}")]
     Incomplete { path: String, what: String },
+    #[error("{path}: the record on {topic} is inconsistent: {what}")]
+    Invalid { path: String, topic: String, what: String },
 }
 
 /// Everything in a recording.
@@ -97,22 +101,19 @@ impl Recording {
             path: name.to_string(),
             detail,
         };
-        let mut profile = None;
-        let mut library = String::new();
-        let mut metadata = None;
-        let mut scene_file = None;
-        let mut topics: HashMap<u16, String> = HashMap::new();
-        let mut schema_encodings: HashMap<u16, String> = HashMap::new();
+        let mut st = State::default();
         let mut b = Builder::default();
         let mut reader = mcap::sans_io::LinearReader::new_with_options(
             mcap::sans_io::LinearReaderOptions::default()
-                .with_prevalidate_chunk_crcs(true)
+                // chunks are opened here, with bounded work (see `chunks`)
+                .with_emit_chunks(true)
                 .with_validate_data_section_crc(true)
                 .with_validate_summary_section_crc(true)
                 .with_check_finishes_after_end_magic(true)
                 .with_record_length_limit(length_limit(bytes.len())),
         );
         let mut rest = bytes;
+        let mut chunks = 0usize;
         while let Some(event) = reader.next_event() {
             let (opcode, data) = match event.map_err(corrupt)? {
                 mcap::sans_io::LinearReadEvent::ReadRequest(need) => {
@@ -124,47 +125,26 @@ impl Recording {
                 }
                 mcap::sans_io::LinearReadEvent::Record { opcode, data } => (opcode, data),
             };
-            match mcap::parse_record(opcode, data).map_err(corrupt)? {
-                Record::Header(h) => {
-                    profile = Some(h.profile);
-                    library = h.library;
+            let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
+            if let Record::Chunk { header, data } = record {
+                chunks += 1;
+                let content = expand(&header, &data, length_limit(bytes.len()) as u64).map_err(corrupt)?;
+                for inner in split(&content) {
+                    let (opcode, data) = inner.map_err(corrupt)?;
+                    let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
+                    st.record(record, &mut b, name)?;
                 }
-                Record::Schema { header, .. } => {
-                    schema_encodings.insert(header.id, header.encoding);
-                }
-                Record::Channel(c) => {
-                    if schemas::channel(&c.topic).is_some() {
-                        if c.message_encoding != "json" {
-                            return Err(not_ours(format!(
-                                "channel {} has message encoding `{}`, expected json",
-                                c.topic, c.message_encoding
-                            )));
-                        }
-                        if schema_encodings.get(&c.schema_id).map(String::as_str) != Some("jsonschema") {
-                            return Err(not_ours(format!("channel {} has no jsonschema schema", c.topic)));
-                        }
-                    }
-                    topics.insert(c.id, c.topic);
-                }
-                Record::Metadata(m) if m.name == schemas::METADATA_NAME => metadata = Some(m.metadata),
-                Record::Attachment { header, data, .. } if header.media_type == "application/toml" => {
-                    scene_file = Some((header.name, String::from_utf8_lossy(&data).into_owned()));
-                }
-                Record::Message { header, data } => {
-                    let topic = topics
-                        .get(&header.channel_id)
-                        .ok_or_else(|| corrupt(mcap::McapError::UnknownChannel(header.sequence, header.channel_id)))?;
-                    b.message(topic, header.sequence, &data)
-                        .map_err(|(topic, sequence, source)| RecordingError::Message {
-                            path: name.to_string(),
-                            topic,
-                            sequence,
-                            source,
-                        })?;
-                }
-                _ => {}
+            } else {
+                st.record(record, &mut b, name)?;
             }
         }
+        let State {
+            profile,
+            library,
+            metadata,
+            scene_file,
+            ..
+        } = st;
         match profile.as_deref() {
             Some(schemas::PROFILE) => {}
             Some(p) => {
@@ -189,9 +169,19 @@ impl Recording {
                 expected: schemas::FORMAT_VERSION.into(),
             });
         }
-        let model = b.model.ok_or_else(|| RecordingError::Incomplete {
+        let model = b.model.take().ok_or_else(|| RecordingError::Incomplete {
             path: name.to_string(),
             what: format!("no message on {}", schemas::MODEL),
+        })?;
+        check_model(&model).map_err(|what| RecordingError::Invalid {
+            path: name.to_string(),
+            topic: schemas::MODEL.to_string(),
+            what,
+        })?;
+        check_records(&model, &b).map_err(|(topic, what)| RecordingError::Invalid {
+            path: name.to_string(),
+            topic,
+            what,
         })?;
         Ok(Recording {
             path: name.to_string(),
@@ -208,11 +198,7 @@ impl Recording {
             logs: b.logs,
             outcome: b.outcome,
             message_counts: b.counts,
-            chunks: mcap::Summary::read(bytes)
-                .ok()
-                .flatten()
-                .and_then(|s| s.stats)
-                .map_or(0, |s| s.chunk_count as usize),
+            chunks,
         })
     }
 
@@ -228,17 +214,83 @@ fn length_limit(file_len: usize) -> usize {
     file_len.saturating_mul(200).clamp(64 << 20, 4 << 30)
 }
 
+/// What the file-level records said (header, channels, metadata, scene attachment).
 #[derive(Default)]
-struct Builder {
-    model: Option<ModelRecord>,
-    increments: Vec<IncrementRecord>,
-    iterations: Vec<IterationRecord>,
-    contact: BTreeMap<usize, Vec<ContactPointRecord>>,
-    crossings: Vec<CrossingMessage>,
-    positions: Vec<PositionsMessage>,
-    logs: Vec<LogRecord>,
-    outcome: Option<Outcome>,
-    counts: BTreeMap<String, u64>,
+struct State {
+    profile: Option<String>,
+    library: String,
+    metadata: Option<BTreeMap<String, String>>,
+    scene_file: Option<(String, String)>,
+    topics: HashMap<u16, String>,
+    schema_encodings: HashMap<u16, String>,
+}
+
+impl State {
+    fn record(&mut self, record: Record, b: &mut Builder, name: &str) -> Result<(), RecordingError> {
+        let not_ours = |detail: String| RecordingError::NotContrail {
+            path: name.to_string(),
+            detail,
+        };
+        match record {
+            Record::Header(h) => {
+                self.profile = Some(h.profile);
+                self.library = h.library;
+            }
+            Record::Schema { header, .. } => {
+                self.schema_encodings.insert(header.id, header.encoding);
+            }
+            Record::Channel(c) => {
+                if schemas::channel(&c.topic).is_some() {
+                    if c.message_encoding != "json" {
+                        return Err(not_ours(format!(
+                            "channel {} has message encoding `{}`, expected json",
+                            c.topic, c.message_encoding
+                        )));
+                    }
+                    if self.schema_encodings.get(&c.schema_id).map(String::as_str) != Some("jsonschema") {
+                        return Err(not_ours(format!("channel {} has no jsonschema schema", c.topic)));
+                    }
+                }
+                self.topics.insert(c.id, c.topic);
+            }
+            Record::Metadata(m) if m.name == schemas::METADATA_NAME => self.metadata = Some(m.metadata),
+            Record::Attachment { header, data, .. } if header.media_type == "application/toml" => {
+                self.scene_file = Some((header.name, String::from_utf8_lossy(&data).into_owned()));
+            }
+            Record::Message { header, data } => {
+                let topic = self
+                    .topics
+                    .get(&header.channel_id)
+                    .ok_or_else(|| RecordingError::Corrupt {
+                        path: name.to_string(),
+                        source: mcap::McapError::UnknownChannel(header.sequence, header.channel_id),
+                    })?;
+                b.message(topic, header.sequence, &data)
+                    .map_err(|(topic, sequence, source)| RecordingError::Message {
+                        path: name.to_string(),
+                        topic,
+                        sequence,
+                        source,
+                    })?;
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+/// The records of a recording as they are read.
+#[derive(Default)]
+pub(crate) struct Builder {
+    pub(crate) model: Option<ModelRecord>,
+    pub(crate) increments: Vec<IncrementRecord>,
+    pub(crate) iterations: Vec<IterationRecord>,
+    pub(crate) contact: BTreeMap<usize, Vec<ContactPointRecord>>,
+    pub(crate) crossings: Vec<CrossingMessage>,
+    pub(crate) positions: Vec<PositionsMessage>,
+    pub(crate) logs: Vec<LogRecord>,
+    pub(crate) outcome: Option<Outcome>,
+    pub(crate) counts: BTreeMap<String, u64>,
 }
 
 type MessageError = (String, u32, serde_json::Error);

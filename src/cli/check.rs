@@ -1,3 +1,7 @@
+//! `contrail check SCENE`: validate a scene (and build its model) without running it.
+
+use super::out::outln;
+use contrail::scene::types::ArcSide;
 use contrail::scene::{build_model, parse, SceneSource};
 use std::process::ExitCode;
 
@@ -15,7 +19,7 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
     let scene = parse(&src, &a.sets)?;
     let m = build_model(&src, &scene)?;
     let slaves: usize = m.contacts.iter().map(|c| c.slaves.len()).sum();
-    println!(
+    outln!(
         "{}: ok — {} bodies, {} nodes, {} elements, {} DOFs ({} prescribed), {} rigid bodies, {} contact pairs ({} slave points), {} increments to t = {}",
         src.origin,
         m.bodies.len(),
@@ -28,9 +32,35 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         slaves,
         m.stepping.increments,
         m.stepping.end
-    );
+    )?;
+    for r in &scene.rigid {
+        if let Some(arc) = &r.arc {
+            let side = ArcSide::of(arc.from_deg, arc.to_deg);
+            outln!(
+                "  rigid {}: arc about [{}, {}], r = {}, {} from {}° to {}°: the rigid body is {} the circle ({}){}",
+                r.name,
+                arc.centre[0],
+                arc.centre[1],
+                arc.radius,
+                if side == ArcSide::Inside {
+                    "counter-clockwise"
+                } else {
+                    "clockwise"
+                },
+                arc.from_deg,
+                arc.to_deg,
+                side.name(),
+                if side == ArcSide::Inside { "a disc" } else { "a cavity" },
+                if arc.side.is_none() {
+                    format!("; state it with side = \"{}\"", side.name())
+                } else {
+                    String::new()
+                }
+            )?;
+        }
+    }
     for c in &m.contacts {
-        println!(
+        outln!(
             "  contact {}: {} slaves, ε_N = {:e}, ε_T = {:e}, μ = {}, transfer = {}",
             c.name,
             c.slaves.len(),
@@ -38,7 +68,7 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
             c.law.eps_t,
             c.law.mu,
             c.transfer.name()
-        );
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,5 +1,6 @@
 //! `contrail diff A.mcap B.mcap`: compare two recordings of one scene.
 
+use super::out::{out, outln};
 use super::BadInput;
 use contrail::analysis::diff::{diff as compare, traces, Align, DiffReport, POINT_FIELDS};
 use contrail::analysis::plot::line_chart;
@@ -158,11 +159,11 @@ pub fn diff(a: DiffArgs) -> anyhow::Result<ExitCode> {
         line_chart(path, &title, x, &a.field, &series).map_err(|e| BadInput(e.to_string()))?;
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
-        print!("{}", render(&report));
+        out!("{}", render(&report))?;
         if let Some(p) = &a.plot {
-            println!("plot         {}", p.display());
+            outln!("plot         {}", p.display())?;
         }
     }
     Ok(if report.within_tolerance {

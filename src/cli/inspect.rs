@@ -1,5 +1,6 @@
 //! `contrail inspect FILE.mcap`: a summary of a recording.
 
+use super::out::{out, outln};
 use super::BadInput;
 use contrail::analysis::inspect::{inspect as summarise, render};
 use contrail::analysis::recording::Recording;
@@ -19,9 +20,9 @@ pub fn inspect(a: InspectArgs) -> anyhow::Result<ExitCode> {
     let r = Recording::open(&a.file).map_err(|e| BadInput(e.to_string()))?;
     let s = summarise(&r);
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&s)?);
+        outln!("{}", serde_json::to_string_pretty(&s)?)?;
     } else {
-        print!("{}", render(&s));
+        out!("{}", render(&s))?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -3,13 +3,16 @@
 mod check;
 mod diff;
 mod inspect;
+pub(crate) mod out;
 mod plot;
 mod progress;
+mod recover;
 mod replay;
 mod run;
 mod scenes;
 mod suggest;
 mod summary;
+pub mod signal;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -41,6 +44,9 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Compare two MCAP recordings of one scene (exit 0 within --tol, 1 beyond, 2 bad input).
     Diff(diff::DiffArgs),
+    /// Salvage the complete chunks of an unfinished or damaged recording (a killed run's
+    /// `.NAME.PID.N.part` file) into a finalised one that ends with a "recovered" outcome.
+    Recover(recover::RecoverArgs),
 }
 
 /// Input the user must fix (exit code 2).
@@ -102,11 +108,12 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => replay::replay(a),
         Command::Inspect(a) => inspect::inspect(a),
         Command::Diff(a) => diff::diff(a),
+        Command::Recover(a) => recover::recover(a),
         Command::Schema => {
-            println!(
+            out::outln!(
                 "{}",
                 serde_json::to_string_pretty(&schemars::schema_for!(contrail::scene::SceneFile))?
-            );
+            )?;
             Ok(ExitCode::SUCCESS)
         }
     }

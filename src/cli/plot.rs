@@ -1,6 +1,7 @@
 //! `contrail plot`: load–displacement curves of several runs on one chart, from CSV files of
 //! `run --out FILE.csv` or directly from MCAP recordings.
 
+use super::out::outln;
 use super::BadInput;
 use contrail::analysis::plot::{line_chart, Series};
 use contrail::analysis::recording::Recording;
@@ -116,6 +117,6 @@ fn read(spec: &str) -> anyhow::Result<Series> {
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
     let series = a.runs.iter().map(|r| read(r)).collect::<anyhow::Result<Vec<_>>>()?;
     line_chart(&a.out, &a.title, &a.x_label, &a.y_label, &series).map_err(|e| BadInput(e.to_string()))?;
-    println!("written {}", a.out.display());
+    outln!("written {}", a.out.display())?;
     Ok(ExitCode::SUCCESS)
 }

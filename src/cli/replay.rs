@@ -1,5 +1,6 @@
 //! `contrail replay FILE.mcap`: rebuild the rerun stream of a run from its recording alone.
 
+use super::out::outln;
 use super::BadInput;
 use contrail::analysis::recording::Recording;
 use contrail::record::rerun_sink::{self, RerunTargets, RerunView};
@@ -88,14 +89,14 @@ pub fn replay(a: ReplayArgs) -> anyhow::Result<ExitCode> {
     let mut view = RerunView::new(stream, &r.model)?;
     replay_into(&r, &mut view)?;
     view.finish()?;
-    println!(
+    outln!(
         "replayed     {} ({} increments, {} contact records)",
         a.file.display(),
         r.increments.len(),
         r.contact.values().map(Vec::len).sum::<usize>()
-    );
+    )?;
     if let Some(p) = &targets.save {
-        println!("written      {}", p.display());
+        outln!("written      {}", p.display())?;
     }
     Ok(ExitCode::SUCCESS)
 }

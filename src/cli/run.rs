@@ -13,8 +13,6 @@ use contrail::solver::{run as solve, SolveError};
 use std::io::{BufWriter, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 
 #[derive(clap::Args, Debug)]
 pub struct RunArgs {
@@ -72,12 +70,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     }
     let (src, model) = contrail::load_scene(&a.scene, &a.sets)?;
     let info = contrail::run_info(&src, &a.sets, &model);
-    let stop = Arc::new(AtomicBool::new(false));
-    {
-        let stop = stop.clone();
-        // a second Ctrl-C while stopping is ignored: the recording is being finalised
-        let _ = ctrlc::set_handler(move || stop.store(true, Ordering::SeqCst));
-    }
+    let stop = super::signal::stop_flag();
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
     for path in &a.out {
         sinks.push(sink(path, a.positions_every)?);

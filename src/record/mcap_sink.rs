@@ -2,7 +2,13 @@
 //! zstd-compressed chunks, the run's facts as MCAP metadata and the scene text as an
 //! attachment. `finish` writes the outcome as the last message and closes the file, so a
 //! failed or interrupted run still leaves a complete recording.
+//!
+//! [`McapSink::create`] writes a file under a temporary name and renames it into place at
+//! `finish` (see [`super::atomic_file`]). An I/O error (a full disk) is reported with its
+//! cause and stops the run; the half-written temporary file is then removed, and the mcap
+//! writer — which cannot recover from an error in the middle of a chunk — never sees it.
 
+use super::atomic_file::{AtomicFile, FirstError, Guarded};
 use super::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
 use super::schemas::{self, CHANNELS};
 use super::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
@@ -10,6 +16,7 @@ use crate::model::Model;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
+use std::path::Path;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
 /// Options of the MCAP recorder.
@@ -39,8 +46,12 @@ impl Default for McapOptions {
 
 /// Writes a recording to `W` (a file, or a `Cursor<Vec<u8>>` in tests).
 pub struct McapSink<W: Write + Seek> {
-    writer: Option<mcap::Writer<W>>,
+    writer: Option<mcap::Writer<Guarded<W>>>,
     done: Option<W>,
+    /// The first I/O error of the output.
+    io_error: FirstError,
+    /// What to do with the output at `finish` (commit or discard a temporary file).
+    finalise: Option<Finalise<W>>,
     name: String,
     opts: McapOptions,
     channel_ids: Vec<u16>,
@@ -51,6 +62,38 @@ pub struct McapSink<W: Write + Seek> {
     /// Positions of the last increment when they were thinned away (written at `finish`).
     pending_positions: Option<PositionsMessage>,
 }
+
+/// Called at `finish` with the output and whether everything was written.
+type Finalise<W> = Box<dyn FnOnce(W, bool) -> std::io::Result<()>>;
+
+impl McapSink<AtomicFile> {
+    /// Record to the file `path`: written under a temporary name in the same directory and
+    /// renamed to `path` when the recording is finished (removed if it could not be written).
+    pub fn create(path: &Path, opts: McapOptions) -> Result<Self, ObserverError> {
+        let name = path.display().to_string();
+        let file = AtomicFile::create(path).map_err(|e| ObserverError::new(&name, CannotCreate(e)))?;
+        let mut sink = McapSink::new(file, &name, opts)?;
+        sink.finalise = Some(Box::new(|f: AtomicFile, ok| {
+            if ok {
+                f.commit().map(|_| ())
+            } else {
+                f.discard();
+                Ok(())
+            }
+        }));
+        Ok(sink)
+    }
+}
+
+/// The output file could not be created.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot create: {0}")]
+struct CannotCreate(#[source] std::io::Error);
+
+/// The output could not be written.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write: {0}")]
+struct CannotWrite(#[source] std::io::Error);
 
 impl<W: Write + Seek> McapSink<W> {
     /// Start a recording on `out`; `name` names the sink in error messages (the file path).
@@ -65,12 +108,19 @@ impl<W: Write + Seek> McapSink<W> {
             .library(format!("contrail {}", crate::VERSION))
             .compression(compression)
             .compression_level(opts.compression_level)
-            .emit_message_indexes(opts.message_indexes)
-            .create(out)
+            .emit_message_indexes(opts.message_indexes);
+        let io_error = FirstError::default();
+        let writer = writer
+            .create(Guarded::new(out, io_error.clone()))
             .map_err(|e| ObserverError::new(name, e))?;
+        if let Some(e) = io_error.get() {
+            return Err(ObserverError::new(name, CannotWrite(e)));
+        }
         Ok(McapSink {
             writer: Some(writer),
             done: None,
+            io_error,
+            finalise: None,
             name: name.to_string(),
             opts,
             channel_ids: Vec::new(),
@@ -93,7 +143,16 @@ impl<W: Write + Seek> McapSink<W> {
         ObserverError::new(&self.name, e)
     }
 
-    fn writer(&mut self) -> Result<&mut mcap::Writer<W>, ObserverError> {
+    /// The first I/O error of the output, if one happened (it wins over what the mcap writer
+    /// said, which is only a consequence).
+    fn io_check<T>(&self, r: Result<T, ObserverError>) -> Result<T, ObserverError> {
+        match self.io_error.get() {
+            Some(e) => Err(self.err(CannotWrite(e))),
+            None => r,
+        }
+    }
+
+    fn writer(&mut self) -> Result<&mut mcap::Writer<Guarded<W>>, ObserverError> {
         let name = self.name.clone();
         self.writer
             .as_mut()
@@ -122,7 +181,8 @@ impl<W: Write + Seek> McapSink<W> {
         let buf = std::mem::take(&mut self.buf);
         let r = self.writer()?.write_to_known_channel(&header, &buf);
         self.buf = buf;
-        r.map_err(|e| self.err(e))
+        let r = r.map_err(|e| self.err(e));
+        self.io_check(r)
     }
 
     fn metadata(info: &RunInfo, model: &Model, opts: &McapOptions) -> BTreeMap<String, String> {
@@ -193,7 +253,8 @@ impl<W: Write + Seek> Observer for McapSink<W> {
         })
         .map_err(e)?;
         self.channel_ids = ids;
-        self.put(schemas::MODEL, &ModelRecord::new(model))
+        let r = self.put(schemas::MODEL, &ModelRecord::new(model));
+        self.io_check(r)
     }
 
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
@@ -242,8 +303,20 @@ impl<W: Write + Seek> Observer for McapSink<W> {
         let mut writer = self.writer.take().ok_or_else(|| self.err("finish called twice"))?;
         let closed = writer.finish().map_err(|e| self.err(e));
         let mut out = writer.into_inner();
-        let flushed = out.flush().map_err(|e| self.err(e));
-        self.done = Some(out);
-        first.and(closed.map(|_| ())).and(flushed)
+        let _ = out.flush();
+        let result = self.io_check(first.and(closed.map(|_| ())));
+        let mut out = out.into_inner();
+        match self.finalise.take() {
+            Some(f) => {
+                let ok = result.is_ok();
+                let committed = f(out, ok).map_err(|e| self.err(CannotWrite(e)));
+                result.and(committed)
+            }
+            None => {
+                let flushed = out.flush().map_err(|e| self.err(CannotWrite(e)));
+                self.done = Some(out);
+                result.and(flushed)
+            }
+        }
     }
 }

@@ -35,6 +35,8 @@ pub struct RigidInfo {
     /// `point` or `surface`.
     pub kind: String,
     /// One polyline per piece (the segment ids of a rigid master are these piece indices).
+    #[schemars(with = "Vec<Vec<Real2>>")]
+    #[serde(with = "real_polylines")]
     pub pieces: Vec<Vec<[f64; 2]>>,
 }
 
@@ -49,8 +51,11 @@ pub struct PairInfo {
     /// Master segments of a deformable face as node pairs (empty for a rigid master).
     pub master_segments: Vec<[usize; 2]>,
     pub transfer: String,
+    #[serde(with = "Real")]
     pub eps_n: f64,
+    #[serde(with = "Real")]
     pub eps_t: f64,
+    #[serde(with = "Real")]
     pub mu: f64,
 }
 
@@ -60,6 +65,8 @@ pub struct ModelRecord {
     pub name: String,
     pub description: String,
     /// Reference coordinates of the nodes.
+    #[schemars(with = "Vec<Real2>")]
+    #[serde(with = "real_pairs")]
     pub nodes: Vec<[f64; 2]>,
     /// Quadrilaterals: four node ids, counter-clockwise.
     pub elements: Vec<[usize; 4]>,
@@ -71,6 +78,7 @@ pub struct ModelRecord {
     /// Label of the load–displacement monitor, if the scene has one.
     pub monitor: Option<String>,
     /// Final pseudo-time of the stepping.
+    #[serde(with = "Real")]
     pub end: f64,
 }
 
@@ -236,6 +244,32 @@ mod real_pairs {
         seq.end()
     }
     pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<[f64; 2]>, De::Error> {
+        let v: Vec<D> = Vec::deserialize(d)?;
+        Ok(v.into_iter().map(|D(p)| p).collect())
+    }
+}
+
+mod real_polylines {
+    use serde::ser::SerializeSeq;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    struct L<'a>(&'a [[f64; 2]]);
+    impl serde::Serialize for L<'_> {
+        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            super::real_pairs::serialize(self.0, s)
+        }
+    }
+    #[derive(Deserialize)]
+    struct D(#[serde(with = "super::real_pairs")] Vec<[f64; 2]>);
+
+    pub fn serialize<S: Serializer>(v: &[Vec<[f64; 2]>], s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(v.len()))?;
+        for p in v {
+            seq.serialize_element(&L(p))?;
+        }
+        seq.end()
+    }
+    pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<Vec<[f64; 2]>>, De::Error> {
         let v: Vec<D> = Vec::deserialize(d)?;
         Ok(v.into_iter().map(|D(p)| p).collect())
     }

@@ -1,6 +1,7 @@
 //! What the solver reports, and to whom: record types (serde + JSON Schema) and the
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
+pub mod atomic_file;
 pub mod csv;
 mod failure;
 pub mod jsonl;

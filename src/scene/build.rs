@@ -128,6 +128,7 @@ fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
 
 /// Build the model of a checked scene.
 pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError> {
+    super::validate::validate(src, s)?;
     let cx = Ctx { src };
     let end = s.stepping.end;
     if s.stepping.increments == 0 || end <= 0.0 {

@@ -7,6 +7,7 @@ mod build;
 pub mod builtin;
 mod overrides;
 pub mod types;
+pub mod validate;
 
 pub use build::build_model;
 pub use overrides::apply_override;
@@ -112,7 +113,7 @@ pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneEr
     for set in sets {
         apply_override(&mut table, set).map_err(|message| SceneError::Override {
             origin: source.origin.clone(),
-            set: set.clone(),
+            set: shorten(set),
             message,
         })?;
     }
@@ -123,6 +124,14 @@ pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneEr
             set: sets.join(" --set "),
             message: e.message().to_string(),
         })
+}
+
+/// A `--set` argument for an error message: at most 120 characters.
+fn shorten(set: &str) -> String {
+    match set.char_indices().nth(120) {
+        Some((cut, _)) => format!("{}… ({} characters)", &set[..cut], set.len()),
+        None => set.to_string(),
+    }
 }
 
 /// Location `:line:col` of the first quoted occurrence of `needle` in the text (for semantic

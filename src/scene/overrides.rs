@@ -8,6 +8,13 @@
 
 use toml::{Table, Value};
 
+/// Most segments a key path may have: scene keys are at most a few levels deep, and the walk
+/// recurses once per segment.
+pub const MAX_PATH_SEGMENTS: usize = 32;
+
+/// Longest value text accepted (a value is parsed as TOML, whose nesting would recurse).
+pub const MAX_VALUE_LEN: usize = 4096;
+
 fn parse_value(raw: &str) -> Value {
     toml::from_str::<Table>(&format!("v = {raw}"))
         .ok()
@@ -20,12 +27,47 @@ pub fn apply_override(root: &mut Table, set: &str) -> Result<(), String> {
     let (path, raw) = set
         .split_once('=')
         .ok_or_else(|| "expected key.path=value".to_string())?;
-    let segs: Vec<&str> = path.trim().split('.').filter(|s| !s.is_empty()).collect();
+    let segs: Vec<&str> = path
+        .trim()
+        .split('.')
+        .filter(|s| !s.is_empty())
+        .take(MAX_PATH_SEGMENTS + 1)
+        .collect();
     if segs.is_empty() {
         return Err("empty key path".into());
     }
+    if segs.len() > MAX_PATH_SEGMENTS {
+        return Err(format!(
+            "the key path has more than {MAX_PATH_SEGMENTS} segments; scene keys are a few levels deep"
+        ));
+    }
+    if raw.len() > MAX_VALUE_LEN {
+        return Err(format!("the value is longer than {MAX_VALUE_LEN} characters"));
+    }
+    if nesting(raw) > MAX_PATH_SEGMENTS {
+        return Err(format!(
+            "the value nests more than {MAX_PATH_SEGMENTS} arrays or tables; scene values are at most two deep"
+        ));
+    }
     let value = parse_value(raw.trim());
     set_in_table(root, &segs, &value, path)
+}
+
+/// Deepest nesting of brackets and braces in a value text (quotes are not special: an
+/// over-estimate only refuses values no scene has).
+fn nesting(raw: &str) -> usize {
+    let (mut depth, mut max) = (0usize, 0usize);
+    for c in raw.chars() {
+        match c {
+            '[' | '{' => {
+                depth += 1;
+                max = max.max(depth);
+            }
+            ']' | '}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    max
 }
 
 fn set_in_table(t: &mut Table, segs: &[&str], value: &Value, full: &str) -> Result<(), String> {
@@ -102,5 +144,20 @@ mod tests {
         assert!(apply_override(&mut t, "contact.7.mu=0.1").is_err());
         assert!(apply_override(&mut t, "name.x=1").is_err());
         assert!(apply_override(&mut t, "novalue").is_err());
+    }
+
+    /// Issue 10: a key path of ~24 000 segments overflowed the stack.
+    #[test]
+    fn very_long_key_paths_and_deep_values_are_refused() {
+        let mut t = table();
+        let path = vec!["a"; 24_000].join(".");
+        let e = apply_override(&mut t, &format!("{path}=1")).unwrap_err();
+        assert!(e.contains("more than 32 segments"), "{e}");
+        let deep = format!("stepping.increments={}1{}", "[".repeat(100_000), "]".repeat(100_000));
+        assert!(apply_override(&mut t, &deep).is_err());
+        let ok = vec!["a"; 32].join(".");
+        apply_override(&mut t, &format!("{ok}=1")).unwrap();
+        let long: Vec<String> = (0..100).map(|i| format!("[{i}.0, 0.0]")).collect();
+        apply_override(&mut t, &format!("polyline=[{}]", long.join(", "))).unwrap();
     }
 }

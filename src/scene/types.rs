@@ -31,6 +31,32 @@ pub struct SceneFile {
     #[serde(default)]
     pub solver: NewtonSettings,
     pub monitor: Option<MonitorSpec>,
+    /// Model-size limits checked before anything is allocated.
+    #[serde(default)]
+    pub limits: Limits,
+}
+
+/// Limits on the size of a model and of a run, checked before the model is built. Raise them
+/// on purpose, e.g. `--set limits.max_dofs=5000000`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Limits {
+    /// Largest number of degrees of freedom (2 per node).
+    pub max_dofs: usize,
+    /// Largest estimated memory of the solve, in GiB (about 2.2 kB per DOF).
+    pub max_memory_gib: f64,
+    /// Largest number of nominal increments.
+    pub max_increments: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_dofs: 2_000_000,
+            max_memory_gib: 8.0,
+            max_increments: 1_000_000,
+        }
+    }
 }
 
 /// A deformable body meshed with quadrilaterals.
@@ -176,6 +202,39 @@ pub struct ArcSpec {
     pub radius: f64,
     pub from_deg: f64,
     pub to_deg: f64,
+    /// Where the rigid body is: `inside` the circle (a disc; the arc runs counter-clockwise,
+    /// `from_deg < to_deg`) or `outside` it (a cavity; clockwise, `from_deg > to_deg`). When
+    /// given it must agree with the orientation; `contrail check` shows it either way.
+    pub side: Option<ArcSide>,
+}
+
+/// Side of an arc the rigid body is on.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ArcSide {
+    /// The rigid body is the disc inside the circle (counter-clockwise arc).
+    Inside,
+    /// The rigid body surrounds the circle (clockwise arc).
+    Outside,
+}
+
+impl ArcSide {
+    /// `inside` or `outside`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ArcSide::Inside => "inside",
+            ArcSide::Outside => "outside",
+        }
+    }
+
+    /// The side implied by an arc's orientation.
+    pub fn of(from_deg: f64, to_deg: f64) -> Self {
+        if to_deg > from_deg {
+            ArcSide::Inside
+        } else {
+            ArcSide::Outside
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]

@@ -1,0 +1,124 @@
+//! Consistency checks of the records of a recording before anything uses them: every node
+//! index of the `/model` record points at a node, every body range lies inside the node
+//! list, position messages have one entry per node and rigid body, and increment numbers are
+//! in order. A recording that passes can be summarised, compared and replayed without an
+//! index going out of bounds.
+
+use super::recording::Builder;
+use crate::record::messages::ModelRecord;
+use crate::record::schemas;
+
+/// Largest increment number accepted (a run of more increments would not fit in a file).
+pub const MAX_INCREMENT: usize = u32::MAX as usize;
+
+/// Check the `/model` record; the error says what is wrong.
+pub fn check_model(m: &ModelRecord) -> Result<(), String> {
+    let n = m.nodes.len();
+    let node = |what: &str, i: usize| -> Result<(), String> {
+        if i < n {
+            Ok(())
+        } else {
+            Err(format!("{what} names node {i}, but the model has {n} nodes"))
+        }
+    };
+    for (k, e) in m.elements.iter().enumerate() {
+        for &i in e {
+            node(&format!("element {k}"), i)?;
+        }
+    }
+    if m.element_body.len() != m.elements.len() {
+        return Err(format!(
+            "{} elements but {} element bodies",
+            m.elements.len(),
+            m.element_body.len()
+        ));
+    }
+    if let Some((k, b)) = m.element_body.iter().enumerate().find(|(_, &b)| b >= m.bodies.len()) {
+        return Err(format!(
+            "element {k} belongs to body {b}, but there are {} bodies",
+            m.bodies.len()
+        ));
+    }
+    for b in &m.bodies {
+        let end = b.first_node.checked_add(b.node_count).filter(|&e| e <= n);
+        if end.is_none() {
+            return Err(format!(
+                "body `{}` has nodes {} + {}, but the model has {n} nodes",
+                b.name, b.first_node, b.node_count
+            ));
+        }
+        for f in &b.faces {
+            for s in &f.segments {
+                node(&format!("face `{}` of body `{}`", f.name, b.name), s[0])?;
+                node(&format!("face `{}` of body `{}`", f.name, b.name), s[1])?;
+            }
+        }
+    }
+    for c in &m.contacts {
+        for s in &c.master_segments {
+            node(&format!("master segment of contact `{}`", c.name), s[0])?;
+            node(&format!("master segment of contact `{}`", c.name), s[1])?;
+        }
+    }
+    Ok(())
+}
+
+/// Check the other records against the model; the error gives the topic and what is wrong.
+pub(crate) fn check_records(m: &ModelRecord, b: &Builder) -> Result<(), (String, String)> {
+    let err = |topic: &str, what: String| Err((topic.to_string(), what));
+    let mut last = 0;
+    for inc in &b.increments {
+        if inc.increment > MAX_INCREMENT || (last > 0 && inc.increment <= last) {
+            return err(
+                schemas::INCREMENT,
+                format!("increment {} after increment {last}", inc.increment),
+            );
+        }
+        last = inc.increment;
+    }
+    for p in &b.positions {
+        if p.nodes.len() != m.nodes.len() || p.rigid_offsets.len() != m.rigid.len() {
+            return err(
+                schemas::POSITIONS,
+                format!(
+                    "positions of increment {} have {} nodes and {} rigid bodies; the model has {} and {}",
+                    p.increment,
+                    p.nodes.len(),
+                    p.rigid_offsets.len(),
+                    m.nodes.len(),
+                    m.rigid.len()
+                ),
+            );
+        }
+    }
+    let too_big = |topic: &str, i: usize| {
+        if i > MAX_INCREMENT {
+            Err((topic.to_string(), format!("increment number {i} is out of range")))
+        } else {
+            Ok(())
+        }
+    };
+    for i in &b.iterations {
+        too_big(schemas::ITERATION, i.increment)?;
+    }
+    for (&i, points) in &b.contact {
+        too_big(schemas::CONTACT, i)?;
+        if let Some(p) = points.iter().find(|p| p.pair >= m.contacts.len()) {
+            return err(
+                schemas::CONTACT,
+                format!(
+                    "a point of increment {i} is in pair {}; the model has {} pairs",
+                    p.pair,
+                    m.contacts.len()
+                ),
+            );
+        }
+    }
+    for c in &b.crossings {
+        too_big(schemas::CROSSING, c.increment)?;
+    }
+    for l in &b.logs {
+        too_big(schemas::LOG, l.increment)?;
+    }
+    Ok(())
+}
