@@ -1,6 +1,8 @@
 //! Post-processing of results (summaries, plots).
 
+pub mod analytic;
 pub mod diff;
 pub mod inspect;
+pub mod metrics;
 pub mod plot;
 pub mod recording;
