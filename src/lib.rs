@@ -9,12 +9,15 @@
 
 pub mod analysis;
 pub mod assembly;
+pub mod chart;
 pub mod contact;
 pub mod element;
 pub mod model;
 pub mod record;
 pub mod scene;
 pub mod solver;
+pub mod study;
+pub mod sweep;
 
 /// Version of the crate (recorded in every run).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
