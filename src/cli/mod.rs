@@ -1,5 +1,6 @@
 //! Command-line verbs, one file each.
 
+mod chart;
 mod check;
 mod diff;
 mod inspect;
@@ -8,6 +9,7 @@ mod progress;
 mod replay;
 mod run;
 mod scenes;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -38,6 +40,11 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Compare two MCAP recordings of one scene (exit 0 within --tol, 1 beyond, 2 bad input).
     Diff(diff::DiffArgs),
+    /// Run a plan of many runs in parallel (`sweep PLAN.toml --out DIR`), or join shard
+    /// folders (`sweep merge DIR... --out DIR`).
+    Sweep(sweep::SweepArgs),
+    /// Charts of a sweep index: `pareto` (error vs wall time) and `stability` (pass/fail maps).
+    Chart(chart::ChartArgs),
 }
 
 /// Input the user must fix (exit code 2).
@@ -72,6 +79,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => replay::replay(a),
         Command::Inspect(a) => inspect::inspect(a),
         Command::Diff(a) => diff::diff(a),
+        Command::Sweep(a) => sweep::sweep(a),
+        Command::Chart(a) => chart::chart(a),
         Command::Schema => {
             println!(
                 "{}",
