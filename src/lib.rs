@@ -9,6 +9,7 @@
 
 pub mod analysis;
 pub mod assembly;
+pub mod chart;
 pub mod contact;
 pub mod element;
 pub mod format;
@@ -16,6 +17,8 @@ pub mod model;
 pub mod record;
 pub mod scene;
 pub mod solver;
+pub mod study;
+pub mod sweep;
 
 /// Version of the crate (recorded in every run).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -74,7 +74,6 @@ fn check(r: &Recording) -> usize {
 }
 
 #[test]
-#[ignore = "fixed by the contact refactor"]
 fn every_crossing_event_has_a_matching_contact_record() {
     let r = record("crossing", &[]);
     assert_eq!(check(&r), 3, "the crossing scene crosses three boundaries");

@@ -1,8 +1,10 @@
 //! Post-processing of results (summaries, plots).
 
 pub mod chunks;
+pub mod analytic;
 pub mod diff;
 pub mod inspect;
+pub mod metrics;
 pub mod plot;
 pub mod recording;
 pub mod recover;

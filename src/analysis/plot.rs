@@ -23,7 +23,8 @@ pub struct PlotError {
 
 const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
-fn register_font() {
+/// Register the embedded DejaVu Sans as `sans-serif` (once; both backends measure text with it).
+pub(crate) fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         // failure only means text falls back to nothing; the curves are still drawn

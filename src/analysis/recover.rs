@@ -230,6 +230,8 @@ fn write<W: Write + Seek>(
                 rep.chunks_kept, rep.chunks_dropped
             ),
             residuals: Vec::new(),
+            kind: crate::record::FailureKind::Recording,
+            points: Vec::new(),
         };
         let data = serde_json::to_vec(&outcome).map_err(|e| werr(mcap::McapError::Io(e.into())))?;
         let channel_id = *ids

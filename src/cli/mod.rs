@@ -1,5 +1,6 @@
 //! Command-line verbs, one file each.
 
+mod chart;
 mod check;
 mod diff;
 mod inspect;
@@ -13,6 +14,7 @@ mod scenes;
 mod suggest;
 mod summary;
 pub mod signal;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -47,6 +49,11 @@ pub enum Command {
     /// Salvage the complete chunks of an unfinished or damaged recording (a killed run's
     /// `.NAME.PID.N.part` file) into a finalised one that ends with a "recovered" outcome.
     Recover(recover::RecoverArgs),
+    /// Run a plan of many runs in parallel (`sweep PLAN.toml --out DIR`), or join shard
+    /// folders (`sweep merge DIR... --out DIR`).
+    Sweep(sweep::SweepArgs),
+    /// Charts of a sweep index: `pareto` (error vs wall time) and `stability` (pass/fail maps).
+    Chart(chart::ChartArgs),
 }
 
 /// Input the user must fix (exit code 2).
@@ -109,6 +116,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Inspect(a) => inspect::inspect(a),
         Command::Diff(a) => diff::diff(a),
         Command::Recover(a) => recover::recover(a),
+        Command::Sweep(a) => sweep::sweep(a),
+        Command::Chart(a) => chart::chart(a),
         Command::Schema => {
             out::outln!(
                 "{}",

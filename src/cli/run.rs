@@ -105,6 +105,8 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             cutbacks,
             reason,
             residuals,
+            kind,
+            points,
         }) => {
             row(&mut o, "ended", "FAILED".into());
             row(
@@ -118,6 +120,27 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
                 ),
             );
             row(&mut o, "residuals", compact_list(residuals, 8));
+            row(&mut o, "kind", kind.name().into());
+            for p in points.iter().take(4) {
+                let states: Vec<String> = p
+                    .history
+                    .iter()
+                    .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
+                    .collect();
+                row(
+                    &mut o,
+                    "changing",
+                    format!(
+                        "{} of `{}`: {} changes from iteration {}, ξ = {}: {}",
+                        p.slave_label,
+                        p.pair_name,
+                        p.changes,
+                        p.first_change,
+                        plain(p.xi),
+                        states.join(" → ")
+                    ),
+                );
+            }
             tracker.cutbacks += cutbacks;
         }
         Err(SolveError::Interrupted { increment, .. }) => {

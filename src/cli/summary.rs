@@ -44,10 +44,7 @@ impl Observer for Tracker {
             .map(|c| {
                 c.slaves
                     .iter()
-                    .map(|s| match s {
-                        contrail::model::Slave::Node(n) => format!("node {n}"),
-                        contrail::model::Slave::RigidPoint(r) => format!("rigid {}", model.rigid[*r].name),
-                    })
+                    .map(|s| model.slave_label(*s))
                     .collect()
             })
             .collect();
