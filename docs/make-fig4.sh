@@ -12,7 +12,9 @@ for mu in 0 0.1 0.2 0.3; do
   for scheme in continuous straightforward; do
     f="$out/$scheme-$mu.csv"
     # a straightforward run that stops early is part of the result (exit code 1)
-    "${bin[@]}" run strip-channel --quiet --set contact.mu=$mu --set contact.transfer=$scheme --out "$f" || true
+    # the seed's settings: v = 11 in fixed steps dv = 0.0025, no cut-backs
+    "${bin[@]}" run strip-channel --quiet --set fix.1.value=-11.0 --set stepping.increments=4400 \
+      --set stepping.max_cutbacks=0 --set contact.mu=$mu --set contact.transfer=$scheme --out "$f" || true
     label="$scheme"
     [ "$mu" = 0 ] && label="$label, frictionless" || label="$label, μ = $mu"
     [ "$mu" = 0 ] && [ "$scheme" = straightforward ] && continue  # identical to continuous (see README)

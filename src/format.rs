@@ -20,7 +20,8 @@ pub fn sig(x: f64, digits: usize) -> String {
     let exp = rounded.log10().floor() as i32;
     if (-4..6).contains(&exp) {
         let decimals = (digits as i32 - 1 - exp).max(0) as usize;
-        trim(format!("{x:.decimals$}"))
+        // round to `digits` significant digits also left of the point (123456 → 123000)
+        trim(format!("{:.decimals$}", rounded.copysign(x)))
     } else {
         let s = format!("{:.*e}", digits - 1, x);
         match s.split_once('e') {

@@ -113,7 +113,10 @@ fn crossing_completes_at_every_step_size() {
         for scheme in ["continuous", "path-length", "straightforward"] {
             let m = common::scene(
                 "crossing",
-                &[&format!("stepping.increments={n}"), &format!("contact.transfer={scheme}")],
+                &[
+                    &format!("stepping.increments={n}"),
+                    &format!("contact.transfer={scheme}"),
+                ],
             );
             let (s, mem) = common::solve_ok(&m);
             assert_eq!(mem.crossings.len(), 3, "{scheme}, {n} increments");

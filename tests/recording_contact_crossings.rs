@@ -5,8 +5,8 @@
 //!
 //! Scenes: `crossing` (a rigid point dragged across three segment boundaries in stick) and
 //! `block-slide`. On the code before the contact refactor the previous segment is read after
-//! the history is committed, so `/contact` never shows a crossing; the test is ignored until
-//! that fix lands.
+//! the history is committed, so `/contact` never showed a crossing (fixed: the records are
+//! taken before the commit).
 
 use contrail::analysis::recording::Recording;
 use contrail::record::mcap_sink::{McapOptions, McapSink};

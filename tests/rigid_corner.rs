@@ -72,7 +72,13 @@ fn nodes_pass_a_convex_corner_and_leave_a_free_end_without_spurious_contact() {
         for p in pts {
             let x = p.position[0];
             if p.state != ContactState::Open {
-                assert!(p.gap.abs() <= 2e-3, "increment {}: {} gap {}", inc.increment, p.slave_label, p.gap);
+                assert!(
+                    p.gap.abs() <= 2e-3,
+                    "increment {}: {} gap {}",
+                    inc.increment,
+                    p.slave_label,
+                    p.gap
+                );
                 assert!(
                     (2.0 - 1e-3..=6.0 + 1e-3).contains(&x),
                     "increment {}: {} in contact at x = {x}",
@@ -91,7 +97,12 @@ fn nodes_pass_a_convex_corner_and_leave_a_free_end_without_spurious_contact() {
     }
     assert!(on_top > 100, "nodes rode on the top face ({on_top} point-increments)");
     // at the end every node is past the free end: nothing in contact
-    assert!(mem.contact.last().unwrap().iter().all(|p| p.state == ContactState::Open));
+    assert!(mem
+        .contact
+        .last()
+        .unwrap()
+        .iter()
+        .all(|p| p.state == ContactState::Open));
     println!(
         "{} increments, {} Newton iterations, {} cut-backs, {on_top} closed point-increments",
         summary.increments, summary.newton_iterations, summary.cutbacks

@@ -34,7 +34,11 @@ const SEGMENT: f64 = 0.5;
 
 /// The seed's settings (what docs/fig4.png shows): v = 11 in fixed steps Δv = 0.0025, no
 /// cut-backs (the scene's defaults are adaptive steps to v = 12).
-const SEED: [&str; 3] = ["fix.1.value=-11.0", "stepping.increments=4400", "stepping.max_cutbacks=0"];
+const SEED: [&str; 3] = [
+    "fix.1.value=-11.0",
+    "stepping.increments=4400",
+    "stepping.max_cutbacks=0",
+];
 
 fn run(mu: f64, scheme: &str) -> Memory {
     let (mu, scheme) = (format!("contact.mu={mu}"), format!("contact.transfer={scheme}"));

@@ -34,7 +34,10 @@ fn smoke_plan_from_the_command_line() {
         assert!(out.join(&r.recording).is_file(), "{}", r.recording);
         assert_eq!(r.status, "completed", "{}: {}", r.id, r.message);
         assert!(r.increments > 0 && r.newton_iterations > 0);
-        match (r.study.as_str(), r.params["contact.transfer"].as_str()) {
+        match (
+            r.study.as_str(),
+            r.params.get("contact.transfer").map_or("", |v| v.as_str()),
+        ) {
             ("crossing", "continuous") => {
                 assert!(r.passed(), "{}: {}", r.id, r.message);
                 assert!(r.metrics.jump_rel_max.unwrap() < 1e-3);

@@ -1,7 +1,7 @@
 //! Post-processing of results (summaries, plots).
 
-pub mod chunks;
 pub mod analytic;
+pub mod chunks;
 pub mod diff;
 pub mod inspect;
 pub mod metrics;

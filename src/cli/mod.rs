@@ -11,9 +11,9 @@ mod recover;
 mod replay;
 mod run;
 mod scenes;
+pub mod signal;
 mod suggest;
 mod summary;
-pub mod signal;
 mod sweep;
 
 use clap::{Parser, Subcommand};

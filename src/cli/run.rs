@@ -1,5 +1,6 @@
 //! `contrail run`: solve a scene, write the requested files, and say how it went.
 
+use super::out::out;
 use super::progress::Progress;
 use super::summary::{inspect_hint, progress_lines, Tracker};
 use super::{BadInput, RunFailed};
@@ -169,7 +170,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     if result.is_err() || mcap.is_some() {
         row(&mut o, "inspect", inspect_hint(mcap.map(PathBuf::as_path), &model.name));
     }
-    print!("{o}");
+    out!("{o}")?;
     match result {
         Ok(_) => Ok(ExitCode::SUCCESS),
         Err(e) => {

@@ -1,6 +1,7 @@
 //! `contrail scenes`: the built-in scenes, one of them as a template (`--show NAME`), and the
 //! "did you mean" for a scene argument that is neither a built-in nor a file.
 
+use super::out::{out, outln};
 use super::BadInput;
 use contrail::scene::builtin::{description, find, BUILTINS};
 use std::path::Path;
@@ -18,14 +19,14 @@ pub fn scenes(a: ScenesArgs) -> anyhow::Result<ExitCode> {
     match a.show {
         Some(name) => {
             let b = find(&name).ok_or_else(|| BadInput(unknown_scene(&name)))?;
-            print!("{}", b.text);
+            out!("{}", b.text)?;
             Ok(ExitCode::SUCCESS)
         }
         None => {
             for b in BUILTINS {
-                println!("{:<14} {}", b.name, description(b));
+                outln!("{:<14} {}", b.name, description(b))?;
             }
-            println!("\n(`contrail scenes --show NAME` prints one as a template)");
+            outln!("\n(`contrail scenes --show NAME` prints one as a template)")?;
             Ok(ExitCode::SUCCESS)
         }
     }

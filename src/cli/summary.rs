@@ -41,12 +41,7 @@ impl Observer for Tracker {
         self.slaves = model
             .contacts
             .iter()
-            .map(|c| {
-                c.slaves
-                    .iter()
-                    .map(|s| model.slave_label(*s))
-                    .collect()
-            })
+            .map(|c| c.slaves.iter().map(|s| model.slave_label(*s)).collect())
             .collect();
         Ok(())
     }

@@ -65,9 +65,8 @@ pub fn locate(
     let found = match start {
         Some(s0) => Some(nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb)),
         None => {
-            let g = grid.get_or_insert_with(|| {
-                SegmentGrid::new((0..count).map(|s| bbox(&geom(s))), pair.search_radius)
-            });
+            let g =
+                grid.get_or_insert_with(|| SegmentGrid::new((0..count).map(|s| bbox(&geom(s))), pair.search_radius));
             closest(rs, g.candidates(rs), &geom, pair.search_radius)
         }
     };

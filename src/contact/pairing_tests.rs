@@ -46,7 +46,11 @@ fn block_model(slaves: &[[f64; 2]]) -> Model {
 
 fn locate_all(m: &Model, start: Option<usize>) -> Vec<Pairing> {
     let u = vec![0.0; m.dof_count()];
-    let cfg = Config { model: m, u: &u, t: 0.0 };
+    let cfg = Config {
+        model: m,
+        u: &u,
+        t: 0.0,
+    };
     let pair = &m.contacts[0];
     let mut grid = None;
     pair.slaves

@@ -134,7 +134,11 @@ fn first_touch_tangents_match_fd_and_anchor_at_the_touch_point() {
     let s = g0 / (g0 - e.proj.gap);
     let xi_touch = -0.1 + s * (e.proj.xi + 0.1);
     let expect = -LAW.eps_t * e.proj.a11 * (e.proj.xi - xi_touch);
-    assert!((e.t1_trial - expect).abs() < 1e-10 * expect.abs(), "{} vs {expect}", e.t1_trial);
+    assert!(
+        (e.t1_trial - expect).abs() < 1e-10 * expect.abs(),
+        "{} vs {expect}",
+        e.t1_trial
+    );
 }
 
 #[test]

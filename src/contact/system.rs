@@ -6,8 +6,8 @@
 
 use super::geometry::SegmentGeom;
 use super::law::ContactState;
-use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use super::pairing::{self, Pairing};
+use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
 use crate::model::{ContactPair, Master, Model, RigidShape, Slave};
@@ -88,7 +88,6 @@ pub struct Decision {
     pub state: ContactState,
     pub segment: Option<usize>,
 }
-
 
 /// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
 pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64]) + 'a;

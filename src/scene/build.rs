@@ -7,9 +7,8 @@ use crate::contact::law::ContactLaw;
 use crate::element::material::{lame, Material};
 use crate::model::mesh::RectMesh;
 use crate::model::{
-    OwnedVertex,
-    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, Piece, Prescribed, Ramp,
-    RigidBody, RigidShape, Slave,
+    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, OwnedVertex, Piece, Prescribed,
+    Ramp, RigidBody, RigidShape, Slave,
 };
 
 struct Ctx<'a> {
@@ -305,10 +304,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
                     vec![Slave::RigidVertex(ri, v)]
                 }
                 (RigidShape::Surface { pieces }, Some(v)) => {
-                    return Err(bad(&format!(
-                        "`{r}` has vertices 0..={}, not {v}",
-                        pieces.len()
-                    )))
+                    return Err(bad(&format!("`{r}` has vertices 0..={}, not {v}", pieces.len())))
                 }
                 _ => return Err(bad("a rigid slave is a `point`, or a polyline with `vertex = K`")),
             }

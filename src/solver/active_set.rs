@@ -117,7 +117,12 @@ impl ActiveSetWatch {
     /// The points that changed in this attempt, most changes first (at most `max`).
     pub fn report(&self, contact: &ContactSystem, model: &crate::model::Model, max: usize) -> Vec<ChangingPoint> {
         let mut idx: Vec<usize> = (0..self.now.len()).filter(|&i| self.changes[i] > 0).collect();
-        idx.sort_by_key(|&i| (std::cmp::Reverse(self.changes[i]), std::cmp::Reverse(self.last_change[i])));
+        idx.sort_by_key(|&i| {
+            (
+                std::cmp::Reverse(self.changes[i]),
+                std::cmp::Reverse(self.last_change[i]),
+            )
+        });
         idx.truncate(max);
         let kept = self.filled.min(KEEP);
         idx.into_iter()

@@ -1,12 +1,12 @@
 //! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
 //! optional backtracking line search.
 
+use super::active_set::ActiveSetWatch;
 use super::settings::NewtonSettings;
 use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
 use crate::model::Model;
-use super::active_set::ActiveSetWatch;
 use crate::record::{FailureKind, IterationRecord};
 
 /// Why an increment failed (the stepping driver cuts the step back on these).
@@ -126,7 +126,9 @@ pub fn solve_increment(
         if k == 0 {
             r0 = rn;
         }
-        let tol = (settings.residual_tol * fref).max(settings.residual_abs).max(asm.roundoff());
+        let tol = (settings.residual_tol * fref)
+            .max(settings.residual_abs)
+            .max(asm.roundoff());
         let res_ok = rn <= tol;
         let energy_ok = k > 0 && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE);
         if res_ok && (energy_ok || k == 0 || rn <= settings.residual_abs.max(asm.roundoff())) {
@@ -195,7 +197,8 @@ pub fn solve_increment(
         }
         let changes = ws.watch.observe(&state.contact, k + 1);
         if freezing {
-            ws.watch.freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen);
+            ws.watch
+                .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen);
         }
         let keep_going = record(IterationRecord {
             increment,

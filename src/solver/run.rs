@@ -7,7 +7,8 @@ use crate::assembly::Assembler;
 use crate::contact::system::Config;
 use crate::model::Model;
 use crate::record::{
-    ChangingPoint, FailureKind, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
+    ChangingPoint, FailureKind, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome,
+    RunInfo, StepView,
 };
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
