@@ -67,8 +67,7 @@ fn run(mesh: [usize; 2], mu: f64, scheme: &str) -> (Row, Memory) {
     // secant slope over the first increments (v ≤ 0.05)
     let initial_slope = curve
         .iter()
-        .filter(|p| p.0 <= 0.05 + 1e-12)
-        .last()
+        .rfind(|p| p.0 <= 0.05 + 1e-12)
         .map_or(f64::NAN, |p| p.1 / p.0);
     // the strip's bottom end node (last node of the bottom row) goes below the block's top
     // (it then slides down the wall at x ≈ 6.5)

@@ -17,8 +17,10 @@ fn block_model(slaves: &[[f64; 2]]) -> Model {
             b: [6.5, -40.0],
         },
     ];
-    let mut m = Model::default();
-    m.nodes = slaves.to_vec();
+    let mut m = Model {
+        nodes: slaves.to_vec(),
+        ..Model::default()
+    };
     m.rigid.push(RigidBody {
         name: "block".into(),
         shape: RigidShape::Surface { pieces },

@@ -171,7 +171,7 @@ impl PointProblem {
         if let Some(g0) = c.touch_gap.filter(|g| *g > 0.0) {
             // anchor at the point of first touch (see [`Closed`])
             let penetration = -proj.gap;
-            t1_trial = t1_trial * (penetration / (penetration + g0)); // 1 − s = −ζ / (ζ_A − ζ)
+            t1_trial *= penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
         }
         let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11, self.forced);
         PointEval {

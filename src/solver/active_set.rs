@@ -40,10 +40,8 @@ impl ActiveSetWatch {
         contact.signature_into(&mut self.now);
         let n = self.now.len();
         self.before.clone_from(&self.now);
-        for v in [&mut self.changes] {
-            v.clear();
-            v.resize(n, 0);
-        }
+        self.changes.clear();
+        self.changes.resize(n, 0);
         for v in [&mut self.first_change, &mut self.last_change] {
             v.clear();
             v.resize(n, 0);
@@ -92,14 +90,14 @@ impl ActiveSetWatch {
     /// at its last closed decision when it is open now); returns how many were frozen.
     pub fn freeze_chattering(&mut self, contact: &mut ContactSystem, after: u32, frozen: &mut [bool]) -> usize {
         let mut n = 0;
-        for i in 0..self.now.len() {
-            if after > 0 && self.changes[i] >= after && !frozen[i] {
+        for (i, held) in frozen.iter_mut().enumerate().take(self.now.len()) {
+            if after > 0 && self.changes[i] >= after && !*held {
                 let hold = match self.now[i].state {
                     ContactState::Open => self.last_closed[i].unwrap_or(self.now[i]),
                     _ => self.now[i],
                 };
                 contact.freeze(i, hold);
-                frozen[i] = true;
+                *held = true;
                 n += 1;
             }
         }
