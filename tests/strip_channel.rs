@@ -70,7 +70,7 @@ fn check_complete(mu: f64, scheme: &str) -> f64 {
             "{scheme} μ={mu}: node {n} ends at ({x}, {y})"
         );
     }
-    // the strip never dips into the block's top (which is not a contact surface)
+    // the strip never dips into the block (its top is a contact surface of the outline)
     for pts in &mem.contact {
         for p in pts.iter().filter(|p| p.pair == 1) {
             assert!(
