@@ -11,7 +11,10 @@ const MESHES: [[usize; 2]; 4] = [[24, 1], [100, 4], [500, 9], [2500, 19]];
 
 fn model(mesh: [usize; 2]) -> contrail::model::Model {
     let sets = vec![format!("body.strip.mesh.elements=[{}, {}]", mesh[0], mesh[1])];
-    contrail::load_scene("cantilever", &sets).expect("built-in scene").1
+    contrail::load_scene("cantilever", &sets)
+        .expect("built-in scene")
+        .1
+        .model
 }
 
 fn bench(c: &mut Criterion) {

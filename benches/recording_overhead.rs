@@ -5,7 +5,7 @@
 //! pinning to one core (`RAYON_NUM_THREADS=1 taskset -c 1 target/release/deps/recording_overhead-* --bench`)
 //! counts the compression and batcher threads in full and gives steadier ratios.
 
-use contrail::model::Model;
+use contrail::problem::Problem;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
 use contrail::record::rerun_sink::{self, RerunSink, RerunTargets};
 use contrail::record::{Observer, RunInfo};
@@ -17,11 +17,11 @@ use std::sync::atomic::AtomicBool;
 struct Nothing;
 impl Observer for Nothing {}
 
-fn strip() -> (Model, RunInfo) {
+fn strip() -> (Problem, RunInfo) {
     let sets = vec!["fix.1.value=-0.55".to_string(), "stepping.increments=220".to_string()];
-    let (src, model) = contrail::load_scene("strip-channel", &sets).expect("strip-channel");
-    let info = contrail::run_info(&src, &sets, &model);
-    (model, info)
+    let (src, problem) = contrail::load_scene("strip-channel", &sets).expect("strip-channel");
+    let info = contrail::run_info(&src, &sets, &problem);
+    (problem, info)
 }
 
 fn out_dir() -> PathBuf {
@@ -31,20 +31,20 @@ fn out_dir() -> PathBuf {
 }
 
 fn bench(c: &mut Criterion) {
-    let (model, info) = strip();
+    let (problem, info) = strip();
     let stop = AtomicBool::new(false);
     let dir = out_dir();
     let mut g = c.benchmark_group("strip-channel (v to 0.55 in 220 increments)");
     g.sample_size(10);
     g.bench_function("solve", |b| {
-        b.iter(|| contrail::solver::run(&model, &info, &mut Nothing, &stop).map(|s| s.increments))
+        b.iter(|| contrail::solver::run(&problem, &info, &mut Nothing, &stop).map(|s| s.increments))
     });
     let mcap = dir.join("bench.mcap");
     g.bench_function("solve + mcap", |b| {
         b.iter(|| {
             let file = BufWriter::new(std::fs::File::create(&mcap).expect("create"));
             let mut sink = McapSink::new(file, "bench.mcap", McapOptions::default()).expect("mcap");
-            contrail::solver::run(&model, &info, &mut sink, &stop).map(|s| s.increments)
+            contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
         })
     });
     g.bench_function("solve + mcap, no compression", |b| {
@@ -55,7 +55,7 @@ fn bench(c: &mut Criterion) {
                 ..McapOptions::default()
             };
             let mut sink = McapSink::new(file, "bench.mcap", opts).expect("mcap");
-            contrail::solver::run(&model, &info, &mut sink, &stop).map(|s| s.increments)
+            contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
         })
     });
     let rrd = dir.join("bench.rrd");
@@ -67,7 +67,7 @@ fn bench(c: &mut Criterion) {
             };
             let stream = rerun_sink::open(&targets, "bench").expect("rerun");
             let mut sink = RerunSink::new(stream, "rerun");
-            contrail::solver::run(&model, &info, &mut sink, &stop).map(|s| s.increments)
+            contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
         })
     });
     g.finish();

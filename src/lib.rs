@@ -14,8 +14,10 @@ pub mod contact;
 pub mod element;
 pub mod format;
 pub mod model;
+pub mod problem;
 pub mod record;
 pub mod scene;
+pub mod settings;
 pub mod solver;
 pub mod study;
 pub mod sweep;
@@ -30,15 +32,16 @@ pub const GIT_REVISION: &str = env!("CONTRAIL_GIT_REV");
 pub fn load_scene(
     name_or_path: &str,
     sets: &[String],
-) -> Result<(scene::SceneSource, model::Model), scene::SceneError> {
+) -> Result<(scene::SceneSource, problem::Problem), scene::SceneError> {
     let src = scene::SceneSource::resolve(name_or_path)?;
     let file = scene::parse(&src, sets)?;
-    let model = scene::build_model(&src, &file)?;
-    Ok((src, model))
+    let problem = scene::build(&src, &file)?;
+    Ok((src, problem))
 }
 
 /// Run metadata for a model.
-pub fn run_info(src: &scene::SceneSource, sets: &[String], model: &model::Model) -> record::RunInfo {
+pub fn run_info(src: &scene::SceneSource, sets: &[String], problem: &problem::Problem) -> record::RunInfo {
+    let model = &problem.model;
     let asm_free = assembly::DofMap::new(model).n_free;
     record::RunInfo {
         scene: model.name.clone(),
@@ -50,5 +53,6 @@ pub fn run_info(src: &scene::SceneSource, sets: &[String], model: &model::Model)
         transfer: model.contacts.iter().map(|c| c.transfer.name().to_string()).collect(),
         dofs: model.dof_count(),
         free_dofs: asm_free,
+        settings: problem.settings.clone(),
     }
 }

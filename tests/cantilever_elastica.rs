@@ -35,7 +35,7 @@ fn tip(k: f64, mesh: [usize; 2], increments: usize) -> (f64, f64, contrail::reco
     let m = common::scene("cantilever", &[&total, &elements, &incs]);
     let (s, mem) = common::solve_ok(&m);
     let v = s.monitor.unwrap().displacement / L;
-    let right = &m.bodies[0].node_sets["right"];
+    let right = &m.model.bodies[0].node_sets["right"];
     let u = -right.iter().map(|&n| mem.final_u[2 * n]).sum::<f64>() / right.len() as f64 / L;
     (v, u, mem)
 }

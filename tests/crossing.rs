@@ -27,7 +27,7 @@ fn run(scheme: &str) -> (contrail::model::Model, contrail::record::Memory) {
     let m = common::scene("crossing", &[&format!("contact.transfer={scheme}")]);
     let (s, mem) = common::solve_ok(&m);
     println!("{scheme}: {} increments, {} crossings", s.increments, s.crossings);
-    (m, mem)
+    (m.model, mem)
 }
 
 fn seg_len(m: &contrail::model::Model, seg: usize) -> f64 {

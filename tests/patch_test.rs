@@ -27,7 +27,8 @@ fn patch(material: &str, element: &str) {
          mesh = {{ kind = \"rectangle\", origin = [0.0, 0.0], size = [2.0, 2.0], elements = [2, 2] }}\n\
          [stepping]\nincrements = 2\n[solver]\nresidual_tol = 1e-13\n"
     );
-    let mut m = common::scene_text(&text);
+    let mut p = common::scene_text(&text);
+    let m = &mut p.model;
     m.nodes[4] = [1.25, 0.8];
     for n in [0, 1, 2, 3, 5, 6, 7, 8] {
         let x = m.nodes[n];
@@ -39,7 +40,8 @@ fn patch(material: &str, element: &str) {
             });
         }
     }
-    let (_, mem) = common::solve_ok(&m);
+    let (_, mem) = common::solve_ok(&p);
+    let m = &p.model;
     let u = &mem.final_u;
     let x4 = m.nodes[4];
     for (c, h) in H.iter().enumerate() {

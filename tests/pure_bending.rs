@@ -28,7 +28,7 @@ fn tip_deflection(element: &str) -> f64 {
     );
     let m = common::scene_text(&text);
     let (_, mem) = common::solve_ok(&m);
-    let right = &m.bodies[0].node_sets["right"];
+    let right = &m.model.bodies[0].node_sets["right"];
     // tension on top, compression below: the strip bends downwards
     -right.iter().map(|&n| mem.final_u[2 * n + 1]).sum::<f64>() / 2.0
 }

@@ -6,6 +6,7 @@
 use contrail::analysis::recording::{Recording, RecordingError};
 use contrail::analysis::recover::{recover, RECOVERED};
 use contrail::model::Model;
+use contrail::problem::Problem;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
 use contrail::record::{Observer, Outcome, RunInfo};
 use std::io::{Cursor, Seek, SeekFrom, Write};
@@ -13,7 +14,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::mpsc;
 use std::time::Duration;
 
-fn load(sets: &[&str]) -> (Model, RunInfo) {
+fn load(sets: &[&str]) -> (Problem, RunInfo) {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let (src, model) = contrail::load_scene("crossing", &sets).unwrap_or_else(|e| panic!("{e}"));
     let info = contrail::run_info(&src, &sets, &model);
@@ -82,8 +83,8 @@ fn model_only(model: &Model, info: &RunInfo) -> Vec<u8> {
 #[test]
 fn a_model_element_naming_a_missing_node_is_refused() {
     let (mut model, info) = load(&[]);
-    model.elements[0].nodes[2] = 10_000;
-    let bytes = model_only(&model, &info);
+    model.model.elements[0].nodes[2] = 10_000;
+    let bytes = model_only(&model.model, &info);
     let e = Recording::from_bytes(&bytes, "bad-model.mcap").unwrap_err();
     assert!(matches!(e, RecordingError::Invalid { .. }), "{e}");
     let msg = e.to_string();
@@ -93,9 +94,9 @@ fn a_model_element_naming_a_missing_node_is_refused() {
 #[test]
 fn nan_in_the_model_is_written_as_a_string_and_read_back() {
     let (mut model, info) = load(&[]);
-    model.contacts[0].law.eps_t = f64::NAN;
-    model.nodes[0][1] = f64::INFINITY;
-    let bytes = model_only(&model, &info);
+    model.model.contacts[0].law.eps_t = f64::NAN;
+    model.model.nodes[0][1] = f64::INFINITY;
+    let bytes = model_only(&model.model, &info);
     let r = Recording::from_bytes(&bytes, "nan-model.mcap").unwrap();
     assert!(r.model.contacts[0].eps_t.is_nan());
     assert_eq!(r.model.nodes[0][1], f64::INFINITY);
@@ -158,15 +159,15 @@ fn concurrent_writers_of_one_file_leave_a_complete_recording() {
     let (model, info) = load(&["stepping.increments=12", "stepping.end=0.3"]);
     let mut a = McapSink::create(&path, McapOptions::default()).unwrap();
     let mut b = McapSink::create(&path, McapOptions::default()).unwrap();
-    a.start(&model, &info).unwrap();
-    b.start(&model, &info).unwrap();
+    a.start(&model.model, &info).unwrap();
+    b.start(&model.model, &info).unwrap();
     assert!(
         !path.exists(),
         "the final name appears only when a recording is complete"
     );
     a.finish(&Outcome::Completed { increments: 0, t: 0.0 }).unwrap();
     let r = Recording::open(&path).unwrap();
-    assert_eq!(r.model.nodes.len(), model.nodes.len());
+    assert_eq!(r.model.nodes.len(), model.model.nodes.len());
     b.finish(&Outcome::Interrupted { increment: 1, t: 0.0 }).unwrap();
     let r = Recording::open(&path).unwrap();
     assert!(matches!(r.outcome, Some(Outcome::Interrupted { .. })));

@@ -4,7 +4,7 @@
 use contrail::analysis::diff::{diff, Align};
 use contrail::analysis::inspect::inspect;
 use contrail::analysis::recording::Recording;
-use contrail::model::Model;
+use contrail::problem::Problem;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
 use contrail::record::rerun_sink::{self, RerunSink, RerunTargets, RerunView};
 use contrail::record::{
@@ -14,7 +14,7 @@ use contrail::solver::run;
 use std::io::Cursor;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-fn load(name: &str, sets: &[&str]) -> (Model, RunInfo) {
+fn load(name: &str, sets: &[&str]) -> (Problem, RunInfo) {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     let (src, model) = contrail::load_scene(name, &sets).unwrap_or_else(|e| panic!("{e}"));
     let info = contrail::run_info(&src, &sets, &model);
@@ -24,7 +24,7 @@ fn load(name: &str, sets: &[&str]) -> (Model, RunInfo) {
 /// Run into an in-memory MCAP and a `Memory`; return the bytes, the memory and whether the
 /// run completed. `extra` sees every call too (it may set `stop`).
 fn record(
-    model: &Model,
+    model: &Problem,
     info: &RunInfo,
     opts: McapOptions,
     extra: Option<&mut dyn Observer>,
@@ -82,7 +82,7 @@ fn a_recording_reads_back_to_what_the_solver_reported() {
     assert_eq!(r.metadata["crate_version"], contrail::VERSION);
     assert_eq!(r.metadata["git_revision"], contrail::GIT_REVISION);
     assert_eq!(r.scene_file.as_ref().unwrap().1, info.scene_text);
-    assert_eq!(r.model.nodes, model.nodes);
+    assert_eq!(r.model.nodes, model.model.nodes);
     assert_eq!(r.increments.len(), mem.increments.len());
     assert_eq!(r.iterations.len(), mem.iterations.len());
     for (a, b) in r.increments.iter().zip(&mem.increments) {
@@ -116,7 +116,7 @@ fn a_recording_reads_back_to_what_the_solver_reported() {
     let got: Vec<usize> = r.positions.iter().map(|p| p.increment).collect();
     assert_eq!(got, expected, "positions every 7th increment and the last");
     let last = r.positions.last().unwrap();
-    for (i, x) in model.nodes.iter().enumerate() {
+    for (i, x) in model.model.nodes.iter().enumerate() {
         assert_eq!(
             last.nodes[i],
             [x[0] + mem.final_u[2 * i], x[1] + mem.final_u[2 * i + 1]]
@@ -168,7 +168,7 @@ fn non_finite_values_are_written_as_strings_and_read_back() {
         text: HOVERING.into(),
     };
     let file = contrail::scene::parse(&src, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let model = contrail::scene::build_model(&src, &file).unwrap_or_else(|e| panic!("{e}"));
+    let model = contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}"));
     let info = contrail::run_info(&src, &[], &model);
     let (bytes, mem, ok) = record(&model, &info, McapOptions::default(), None, &AtomicBool::new(false));
     assert!(ok);

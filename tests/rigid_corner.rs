@@ -64,7 +64,7 @@ increments = 240
 #[test]
 fn nodes_pass_a_convex_corner_and_leave_a_free_end_without_spurious_contact() {
     let model = common::scene_text(SCENE);
-    let eps_n = model.contacts[0].law.eps_n;
+    let eps_n = model.model.contacts[0].law.eps_n;
     let (summary, mem) = common::solve_ok(&model);
     assert!(matches!(mem.outcome, Some(Outcome::Completed { .. })));
     let mut on_top = 0;

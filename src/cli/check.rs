@@ -2,7 +2,7 @@
 
 use super::out::outln;
 use contrail::scene::types::ArcSide;
-use contrail::scene::{build_model, parse, SceneSource};
+use contrail::scene::{build, parse, SceneSource};
 use std::process::ExitCode;
 
 #[derive(clap::Args, Debug)]
@@ -17,7 +17,8 @@ pub struct CheckArgs {
 pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
     let src = SceneSource::resolve(&a.scene)?;
     let scene = parse(&src, &a.sets)?;
-    let m = build_model(&src, &scene)?;
+    let problem = build(&src, &scene)?;
+    let m = &problem.model;
     let slaves: usize = m.contacts.iter().map(|c| c.slaves.len()).sum();
     outln!(
         "{}: ok — {} bodies, {} nodes, {} elements, {} DOFs ({} prescribed), {} rigid bodies, {} contact pairs ({} slave points), {} increments to t = {}",
@@ -30,8 +31,8 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         m.rigid.len(),
         m.contacts.len(),
         slaves,
-        m.stepping.increments,
-        m.stepping.end
+        problem.settings.stepping.increments,
+        problem.settings.stepping.end
     )?;
     for r in &scene.rigid {
         if let Some(arc) = &r.arc {

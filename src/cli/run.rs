@@ -69,8 +69,9 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             return Err(BadInput(format!("--out {} is given twice", p.display())).into());
         }
     }
-    let (src, model) = contrail::load_scene(&a.scene, &a.sets)?;
-    let info = contrail::run_info(&src, &a.sets, &model);
+    let (src, problem) = contrail::load_scene(&a.scene, &a.sets)?;
+    let model = &problem.model;
+    let info = contrail::run_info(&src, &a.sets, &problem);
     let stop = super::signal::stop_flag();
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
     for path in &a.out {
@@ -82,7 +83,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         sinks.push(Box::new(RerunSink::new(stream, "rerun")));
     }
     if !a.quiet && std::io::stderr().is_terminal() {
-        sinks.push(Box::new(Progress::new(model.stepping.end)));
+        sinks.push(Box::new(Progress::new(problem.settings.stepping.end)));
     }
     let mut tracker = Tracker::default();
     let result = {
@@ -90,7 +91,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             sinks: sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect(),
         };
         fan.sinks.push(&mut tracker);
-        solve(&model, &info, &mut fan, &stop)
+        solve(&problem, &info, &mut fan, &stop)
     };
     let mcap = a.out.iter().find(|p| p.extension().is_some_and(|e| e == "mcap"));
     let mut o = String::new();

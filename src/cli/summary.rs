@@ -36,8 +36,8 @@ impl Tracker {
 }
 
 impl Observer for Tracker {
-    fn start(&mut self, model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
-        self.end = model.stepping.end;
+    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+        self.end = info.settings.stepping.end;
         self.slaves = model
             .contacts
             .iter()

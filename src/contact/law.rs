@@ -15,16 +15,7 @@ use crate::contact::scalar::Scalar;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// Penalty and friction parameters of a contact pair.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct ContactLaw {
-    /// Normal penalty `ε_N` (force per unit penetration at a point).
-    pub eps_n: f64,
-    /// Tangential (stick) penalty `ε_T` (force per unit tangential displacement).
-    pub eps_t: f64,
-    /// Coulomb coefficient `μ` (0 = frictionless).
-    pub mu: f64,
-}
+pub use crate::model::ContactLaw;
 
 /// Contact state of a slave point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]

@@ -22,7 +22,10 @@
 //!    body both projections can be valid: the point belongs to the face it is nearest to
 //!    (smallest `|ζ|`), so a node pushed into the top face next to `V` is not taken as
 //!    penetrating the wall by its distance to `V`. At concave vertices the walk keeps the
-//!    segment it is on while its projection is valid (hysteresis: no flip-flop).
+//!    segment it is on while its projection is valid (hysteresis: no flip-flop); inside the
+//!    body at a concave vertex (the face wrapped round an obstacle's corner) a penetrating
+//!    point in the wedge between the two normals projects onto neither segment: it keeps its
+//!    segment, extended a little past the end ([`concave_wedge`]), instead of being released.
 //! 4. **Owned vertices.** When a vertex of a rigid outline is itself a slave point of another
 //!    pair (the corner C against the strip's bottom face), the slave nodes of the master
 //!    segment that C presses on (paired, `ζ < 0`) are not paired with the outline's pieces
@@ -38,6 +41,15 @@ use super::geometry::SegmentGeom;
 use super::search::{closest, walk, Located, SegmentGrid, XI_TOL};
 use super::system::Config;
 use crate::model::{ContactPair, Master, Slave};
+
+/// How far past its end (in `ξ`, i.e. 2.5 % of the segment's length) a segment held by the
+/// solver for a chattering point stays admissible when the point is verified. A point that
+/// Newton drives back and forth across a kink of the master (the corner C over a node of the
+/// strip's bottom face: on one segment the equilibrium lies just beyond its end, on the next
+/// just before its start) has no node-to-segment equilibrium with `|ξ| ≤ 1` on either; the
+/// frozen one on the held segment's extension is accepted, as master-segment extensions are
+/// in node-to-segment codes, instead of cycling.
+pub const HELD_EXTENSION: f64 = 0.05;
 
 /// Pairing of one slave point at the current iterate.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -62,12 +74,18 @@ pub fn locate(
     let geom = |s: usize| cfg.segment(pair, s);
     let nb = |s: usize| pair.master.neighbours(s);
     let count = pair.master.segment_count();
-    let found = match start {
-        Some(s0) => Some(nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb)),
+    let (found, wedge) = match start {
+        Some(s0) => {
+            let loc = nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb);
+            match concave_wedge(loc, s0, rs, &geom, &nb) {
+                Some(held) => (Some(held), true),
+                None => (Some(loc), false),
+            }
+        }
         None => {
             let g =
                 grid.get_or_insert_with(|| SegmentGrid::new((0..count).map(|s| bbox(&geom(s))), pair.search_radius));
-            closest(rs, g.candidates(rs), &geom, pair.search_radius)
+            (closest(rs, g.candidates(rs), &geom, pair.search_radius), false)
         }
     };
     let Some(loc) = found else {
@@ -76,7 +94,7 @@ pub fn locate(
     if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
         return Pairing::default(); // out of reach: untracked
     }
-    let valid = loc.xi.abs() <= 1.0 + XI_TOL;
+    let valid = wedge || loc.xi.abs() <= 1.0 + XI_TOL;
     Pairing {
         segment: Some(loc.segment),
         located: valid.then_some(loc),
@@ -127,6 +145,49 @@ fn nearest_face(
     } else {
         loc
     }
+}
+
+/// Rule 3b: inside the body at a concave vertex (a face wrapped round a convex obstacle,
+/// e.g. the strip's bottom face over the corner C) the normals of the two segments meet: a
+/// penetrating point in the wedge between them projects past the end of both (`ξ > 1` on
+/// the one before, `ξ < −1` on the one after), although it is in contact with both. Taking
+/// it as open releases it, the next iterate pushes it back in, and Newton cycles. In the
+/// wedge the point keeps the segment it is tracked on (`start`, projected on its line a
+/// little past the end) until the other segment's projection becomes valid; untracked, it
+/// takes the segment it overshoots less. Returns `None` when `loc` is not in such a wedge.
+fn concave_wedge(
+    loc: Located,
+    start: usize,
+    rs: [f64; 2],
+    geom: &dyn Fn(usize) -> SegmentGeom<f64>,
+    nb: &dyn Fn(usize) -> (Option<usize>, Option<usize>),
+) -> Option<Located> {
+    let over = loc.xi.abs() - 1.0;
+    if over <= XI_TOL || loc.gap >= 0.0 {
+        return None;
+    }
+    let (prev, next) = nb(loc.segment);
+    let o = if loc.xi > 0.0 { next } else { prev }?;
+    let q = geom(o).project(rs);
+    // the other segment must be overshot on its far side (past its end towards `loc`)
+    let far_side = if loc.xi > 0.0 {
+        q.xi < -1.0 - XI_TOL
+    } else {
+        q.xi > 1.0 + XI_TOL
+    };
+    if !far_side || q.gap >= 0.0 {
+        return None;
+    }
+    let other = Located {
+        segment: o,
+        xi: q.xi,
+        gap: q.gap,
+    };
+    Some(if start == o || (start != loc.segment && q.xi.abs() - 1.0 < over) {
+        other
+    } else {
+        loc
+    })
 }
 
 /// `ρ_1(a, ξ = 1) × ρ_1(b, ξ = −1)`: positive when the boundary turns left from `a` to `b`,

@@ -7,16 +7,12 @@ use crate::contact::transfer::TransferKind;
 use crate::model::{Master, Model, Piece, Ramp, RigidBody, RigidShape};
 
 fn block_model(slaves: &[[f64; 2]]) -> Model {
-    let pieces = vec![
-        Piece::Segment {
-            a: [20.0, 0.0],
-            b: [6.5, 0.0],
-        },
-        Piece::Segment {
-            a: [6.5, 0.0],
-            b: [6.5, -40.0],
-        },
-    ];
+    outline_model([[20.0, 0.0], [6.5, 0.0], [6.5, -40.0]], slaves)
+}
+
+/// A rigid outline of two pieces `p0 → p1 → p2`, body on the left of the travel.
+fn outline_model(p: [[f64; 2]; 3], slaves: &[[f64; 2]]) -> Model {
+    let pieces = vec![Piece::Segment { a: p[0], b: p[1] }, Piece::Segment { a: p[1], b: p[2] }];
     let mut m = Model {
         nodes: slaves.to_vec(),
         ..Model::default()
@@ -103,5 +99,25 @@ fn a_point_beyond_the_search_radius_is_not_paired() {
     let m = block_model(&[[3.0, -5.0], [10.0, 2.0]]);
     for p in locate_all(&m, None) {
         assert_eq!(p, Pairing::default());
+    }
+}
+
+#[test]
+fn a_penetrating_point_in_the_wedge_of_a_concave_vertex_stays_in_contact() {
+    // outline (10, 0) → (0, 0) → (−10, 2): body below, the vertex is concave (the outline
+    // turns right). (−0.001, −0.05) is inside, between the two inward normals: it projects
+    // past the end of both segments. Tracked, it keeps its segment (extended); never
+    // tracked, the grid search finds no valid projection.
+    let m = outline_model([[10.0, 0.0], [0.0, 0.0], [-10.0, 2.0]], &[[-0.001, -0.05]]);
+    for (start, seg) in [(Some(0), 0), (Some(1), 1)] {
+        let p = locate_all(&m, start)[0];
+        let l = p.located.unwrap_or_else(|| panic!("from {start:?}: released ({p:?})"));
+        assert_eq!(l.segment, seg, "from {start:?}: {l:?}");
+        assert!(l.gap < 0.0 && l.xi.abs() > 1.0 && l.xi.abs() < 1.01, "{l:?}");
+    }
+    // the same point outside a convex vertex (mirror: body above) is in its vertex region
+    let m = outline_model([[-10.0, 2.0], [0.0, 0.0], [10.0, 0.0]], &[[-0.001, -0.05]]);
+    for start in [Some(0), Some(1)] {
+        assert!(locate_all(&m, start)[0].located.is_none(), "from {start:?}");
     }
 }

@@ -4,6 +4,7 @@
 //! local residuals and tangents to the caller's assembler — it never sees global equation
 //! numbers.
 
+use super::events::{crossing_event, CrossingEvent, PointSnapshot};
 use super::geometry::SegmentGeom;
 use super::law::ContactState;
 use super::pairing::{self, Pairing};
@@ -11,7 +12,6 @@ use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
 use crate::model::{ContactPair, Master, Model, RigidShape, Slave};
-use crate::record::{ContactPointRecord, CrossingRecord};
 
 /// History of one slave point at the last converged increment.
 #[derive(Debug, Clone, Copy)]
@@ -146,7 +146,7 @@ impl Config<'_> {
 }
 
 /// Local node slots of one contact point.
-struct Slots {
+pub(super) struct Slots {
     nodes: Vec<usize>,
 }
 
@@ -166,7 +166,7 @@ impl Slots {
     }
 }
 
-fn stored(h: &PointHistory) -> StoredTraction {
+pub(super) fn stored(h: &PointHistory) -> StoredTraction {
     StoredTraction {
         xi: h.xi,
         t1: h.t1,
@@ -177,7 +177,7 @@ fn stored(h: &PointHistory) -> StoredTraction {
 /// The local problem of one slave point on segment `b`, with the history `(stored, A, path)`
 /// of a point that was closed at the last converged increment; returns it with the global
 /// nodes of its slots.
-fn local_problem(
+pub(super) fn local_problem(
     cfg: &Config,
     pair: &ContactPair,
     slave: Slave,
@@ -292,8 +292,9 @@ impl ContactSystem {
     }
 
     /// Start verifying the frozen points: states decided by the data again, segments kept
-    /// where the point still projects onto them (a point at a concave kink has two valid
-    /// closest points; the held one is as admissible as the walk's).
+    /// where the point still projects onto them or onto their extension by
+    /// [`pairing::HELD_EXTENSION`] (a point at a kink of the master has two admissible
+    /// closest points, or none; the held one is as admissible as the walk's).
     pub fn verify_frozen(&mut self) {
         self.verifying = true;
     }
@@ -361,7 +362,9 @@ impl ContactSystem {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 if let Some(f) = self.frozen[ip][is] {
                     let held = pairing::held(cfg, pair, slave, f.segment);
-                    let admissible = held.located.is_some_and(|l| l.xi.abs() <= 1.01);
+                    let admissible = held
+                        .located
+                        .is_some_and(|l| l.xi.abs() <= 1.0 + pairing::HELD_EXTENSION);
                     if !self.verifying || admissible {
                         self.pairings[ip][is] = held;
                     }
@@ -409,7 +412,7 @@ impl ContactSystem {
     }
 
     /// Accept the current iterate as converged; returns the crossing events of this increment.
-    pub fn commit(&mut self, cfg: &Config) -> Vec<CrossingRecord> {
+    pub fn commit(&mut self, cfg: &Config) -> Vec<CrossingEvent> {
         let mut events = Vec::new();
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             for is in 0..pair.slaves.len() {
@@ -422,7 +425,7 @@ impl ContactSystem {
                         if let (true, Some(a), Some(b)) = (old.closed, old.segment, now.segment) {
                             if a != b {
                                 h.crossings += 1;
-                                events.push(crossing_record(cfg, ip, is, a, b, &old, &e, now.path));
+                                events.push(crossing_event(cfg, ip, is, a, b, &old, &e, now.path));
                             }
                         }
                         h.closed = true;
@@ -450,61 +453,16 @@ impl ContactSystem {
         events
     }
 
-    /// Per-point records of the current iterate.
-    pub fn records(&self, cfg: &Config) -> Vec<ContactPointRecord> {
+    /// Snapshot of every point at the current iterate (against the last converged increment).
+    pub fn snapshots(&self, cfg: &Config) -> Vec<PointSnapshot> {
         let mut out = Vec::new();
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 let now = &self.current[ip][is];
                 let hist = &self.committed[ip][is];
-                out.push(ContactPointRecord::new(cfg, ip, is, slave, pair, now, hist));
+                out.push(PointSnapshot::new(cfg, ip, is, slave, pair, now, hist));
             }
         }
         out
-    }
-}
-
-/// Crossing event: the trial traction just before transfer (the old segment `A` extended,
-/// same-segment formula) and just after (the pair's scheme on `B`), in the converged
-/// configuration, as physical tractions along each segment's unit tangent.
-#[allow(clippy::too_many_arguments)]
-fn crossing_record(
-    cfg: &Config,
-    ip: usize,
-    is: usize,
-    a: usize,
-    b: usize,
-    old: &PointHistory,
-    e: &PointEval<f64>,
-    path: Path,
-) -> CrossingRecord {
-    let pair = &cfg.model.contacts[ip];
-    let slave = pair.slaves[is];
-    let ga = cfg.segment(pair, a);
-    let (rho_a, rho1_a) = ga.eval(old.xi);
-    let rho1_b = e.proj.rho1;
-    let kink_angle =
-        (rho1_a[0] * rho1_b[1] - rho1_a[1] * rho1_b[0]).atan2(rho1_a[0] * rho1_b[0] + rho1_a[1] * rho1_b[1]);
-    // A extended: same-segment trial on A's line at the current slave position
-    let same = Path {
-        direction: 0,
-        between: 0.0,
-    };
-    let (ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same, None)));
-    let ext = ext.evaluate_f64();
-    CrossingRecord {
-        pair: ip,
-        slave: is,
-        from_segment: a,
-        to_segment: b,
-        xi_from: old.xi,
-        xi_to: e.proj.xi,
-        xi_from_extended: ext.proj.xi,
-        delta_rho: [e.proj.rho[0] - rho_a[0], e.proj.rho[1] - rho_a[1]],
-        direction: path.direction,
-        kink_angle,
-        trial_before: ext.t1_trial / ext.proj.a11.sqrt(),
-        trial_after: e.t1_trial / e.proj.a11.sqrt(),
-        returned_after: e.t1 / e.proj.a11.sqrt(),
     }
 }

@@ -1,15 +1,14 @@
 //! What a scene becomes: nodes, elements, materials, constraints, rigid geometry and contact
 //! pairs, with everything resolved to indices. The model is immutable during a run.
 
+pub mod contact;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;
 
-use crate::contact::law::ContactLaw;
-use crate::contact::transfer::TransferKind;
 use crate::element::material::Material;
 use crate::element::quad::ElementKind;
-use crate::solver::settings::{NewtonSettings, Stepping};
+pub use contact::{ContactLaw, ContactPair, Master, OwnedVertex, Slave, TransferKind};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
 use std::collections::BTreeMap;
@@ -49,72 +48,6 @@ pub struct NodalLoad {
     pub ramp: Ramp,
 }
 
-/// A contact slave: a node of a deformable body, a rigid point, or a vertex of a rigid
-/// outline (`(body, vertex)`, the vertex being the polyline's point index).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Slave {
-    Node(usize),
-    RigidPoint(usize),
-    RigidVertex(usize, usize),
-}
-
-/// A vertex of a rigid master outline that is itself the slave point of another pair (the
-/// corner of a block against a deformable face): that pair owns the vertex region (see
-/// [`crate::contact::pairing`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct OwnedVertex {
-    /// Point index of the vertex in the outline (between pieces `vertex − 1` and `vertex`).
-    pub vertex: usize,
-    /// Index of the owning pair in [`Model::contacts`] (its only slave is the vertex).
-    pub owner: usize,
-}
-
-/// A contact master surface.
-#[derive(Debug, Clone)]
-pub enum Master {
-    /// A face of a deformable body: linear segments `[a, b]` with their neighbours.
-    Face {
-        body: usize,
-        segments: Vec<[usize; 2]>,
-        prev: Vec<Option<usize>>,
-        next: Vec<Option<usize>>,
-    },
-    /// A rigid surface (index into [`Model::rigid`]); piece `k` neighbours `k ± 1`.
-    Rigid {
-        body: usize,
-        prev: Vec<Option<usize>>,
-        next: Vec<Option<usize>>,
-    },
-}
-
-impl Master {
-    pub fn segment_count(&self) -> usize {
-        match self {
-            Master::Face { segments, .. } => segments.len(),
-            Master::Rigid { prev, .. } => prev.len(),
-        }
-    }
-    pub fn neighbours(&self, seg: usize) -> (Option<usize>, Option<usize>) {
-        match self {
-            Master::Face { prev, next, .. } | Master::Rigid { prev, next, .. } => (prev[seg], next[seg]),
-        }
-    }
-}
-
-/// A node-to-segment contact pair.
-#[derive(Debug, Clone)]
-pub struct ContactPair {
-    pub name: String,
-    pub slaves: Vec<Slave>,
-    pub master: Master,
-    pub law: ContactLaw,
-    pub transfer: TransferKind,
-    /// Slaves farther than this from a segment are not searched against it.
-    pub search_radius: f64,
-    /// Vertices of a rigid master outline owned by another pair's slave.
-    pub owned_vertices: Vec<OwnedVertex>,
-}
-
 /// Load–displacement monitor: mean displacement of a node set in one direction and the sum
 /// of the forces (reactions where prescribed, applied loads elsewhere) on it.
 #[derive(Debug, Clone)]
@@ -138,8 +71,6 @@ pub struct Model {
     pub loads: Vec<NodalLoad>,
     pub rigid: Vec<RigidBody>,
     pub contacts: Vec<ContactPair>,
-    pub stepping: Stepping,
-    pub newton: NewtonSettings,
     pub monitor: Option<Monitor>,
 }
 

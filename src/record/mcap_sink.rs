@@ -188,8 +188,8 @@ impl<W: Write + Seek> McapSink<W> {
     fn metadata(info: &RunInfo, model: &Model, opts: &McapOptions) -> BTreeMap<String, String> {
         let json = |v: serde_json::Value| v.to_string();
         let parameters = serde_json::json!({
-            "stepping": model.stepping,
-            "newton": model.newton,
+            "stepping": info.settings.stepping,
+            "newton": info.settings.newton,
             "contact": model.contacts.iter().map(|c| serde_json::json!({
                 "name": c.name,
                 "law": c.law,
@@ -253,7 +253,7 @@ impl<W: Write + Seek> Observer for McapSink<W> {
         })
         .map_err(e)?;
         self.channel_ids = ids;
-        let r = self.put(schemas::MODEL, &ModelRecord::new(model));
+        let r = self.put(schemas::MODEL, &ModelRecord::new(model, info.settings.stepping.end));
         self.io_check(r)
     }
 

@@ -83,7 +83,8 @@ pub struct ModelRecord {
 }
 
 impl ModelRecord {
-    pub fn new(model: &Model) -> Self {
+    /// The record of `model`, run to the pseudo-time `end`.
+    pub fn new(model: &Model, end: f64) -> Self {
         let bodies = model
             .bodies
             .iter()
@@ -151,7 +152,7 @@ impl ModelRecord {
             rigid,
             contacts,
             monitor: model.monitor.as_ref().map(|m| m.label.clone()),
-            end: model.stepping.end,
+            end,
         }
     }
 

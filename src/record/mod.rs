@@ -18,9 +18,10 @@ pub mod schemas;
 pub use failure::{ChangingPoint, FailureKind, PointDecision};
 pub use observer::{Fanout, Memory, Observer, ObserverError};
 
+use crate::contact::events::{CrossingEvent, PointSnapshot};
 use crate::contact::law::ContactState;
-use crate::contact::system::{Config, PointHistory, PointNow};
-use crate::model::{ContactPair, Slave};
+use crate::model::Model;
+use crate::settings::SolverSettings;
 use real::{Real, Real2, Reals};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -41,6 +42,9 @@ pub struct RunInfo {
     pub transfer: Vec<String>,
     pub dofs: usize,
     pub free_dofs: usize,
+    /// Stepping and Newton settings of the run.
+    #[serde(default)]
+    pub settings: SolverSettings,
 }
 
 /// One Newton iteration.
@@ -148,66 +152,28 @@ pub struct ContactPointRecord {
 }
 
 impl ContactPointRecord {
-    pub(crate) fn new(
-        cfg: &Config,
-        pair_index: usize,
-        slave_index: usize,
-        slave: Slave,
-        pair: &ContactPair,
-        now: &PointNow,
-        hist: &PointHistory,
-    ) -> Self {
-        let label = cfg.model.slave_label(slave);
-        let pos = match (slave, now.eval) {
-            (Slave::Node(n), _) => {
-                let x = cfg.model.nodes[n];
-                [x[0] + cfg.u[2 * n], x[1] + cfg.u[2 * n + 1]]
-            }
-            (_, Some(e)) => {
-                let n = e.proj.normal();
-                [e.proj.rho[0] + e.proj.gap * n[0], e.proj.rho[1] + e.proj.gap * n[1]]
-            }
-            _ => [f64::NAN; 2],
-        };
-        let mut r = ContactPointRecord {
-            pair: pair_index,
-            pair_name: pair.name.clone(),
-            slave: slave_index,
-            slave_label: label,
-            segment: now.segment,
-            previous_segment: hist.segment,
-            xi: f64::NAN,
-            xi_anchor: f64::NAN,
-            gap: f64::NAN,
-            normal_force: 0.0,
-            trial_traction: 0.0,
-            traction: 0.0,
-            state: ContactState::Open,
-            crossing: false,
-            position: pos,
-            contact_point: [f64::NAN; 2],
-            normal: [f64::NAN; 2],
-            tangent: [f64::NAN; 2],
-        };
-        if let Some(e) = now.eval {
-            let sq = e.proj.a11.sqrt();
-            r.xi = e.proj.xi;
-            r.gap = e.proj.gap;
-            r.normal_force = e.normal_force;
-            r.trial_traction = e.t1_trial / sq;
-            r.traction = e.t1 / sq;
-            r.state = e.state;
-            r.xi_anchor = if e.state == ContactState::Open || pair.law.eps_t == 0.0 {
-                f64::NAN
-            } else {
-                e.proj.xi + e.t1 / (pair.law.eps_t * e.proj.a11)
-            };
-            r.crossing = e.state != ContactState::Open && hist.closed && hist.segment != now.segment;
-            r.contact_point = e.proj.rho;
-            r.normal = e.proj.normal();
-            r.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
+    /// The record of a contact system's snapshot, with the names the model gives.
+    pub fn from_snapshot(model: &Model, s: &PointSnapshot) -> Self {
+        ContactPointRecord {
+            pair: s.pair,
+            pair_name: model.contacts[s.pair].name.clone(),
+            slave: s.slave,
+            slave_label: model.slave_label(s.slave_id),
+            segment: s.segment,
+            previous_segment: s.previous_segment,
+            xi: s.xi,
+            xi_anchor: s.xi_anchor,
+            gap: s.gap,
+            normal_force: s.normal_force,
+            trial_traction: s.trial_traction,
+            traction: s.traction,
+            state: s.state,
+            crossing: s.crossing,
+            position: s.position,
+            contact_point: s.contact_point,
+            normal: s.normal,
+            tangent: s.tangent,
         }
-        r
     }
 }
 
@@ -243,6 +209,26 @@ pub struct CrossingRecord {
     /// Returned traction on `B`.
     #[serde(with = "Real")]
     pub returned_after: f64,
+}
+
+impl From<&CrossingEvent> for CrossingRecord {
+    fn from(e: &CrossingEvent) -> Self {
+        CrossingRecord {
+            pair: e.pair,
+            slave: e.slave,
+            from_segment: e.from_segment,
+            to_segment: e.to_segment,
+            xi_from: e.xi_from,
+            xi_to: e.xi_to,
+            xi_from_extended: e.xi_from_extended,
+            delta_rho: e.delta_rho,
+            direction: e.direction,
+            kink_angle: e.kink_angle,
+            trial_before: e.trial_before,
+            trial_after: e.trial_after,
+            returned_after: e.returned_after,
+        }
+    }
 }
 
 /// Severity of a log message.
@@ -284,7 +270,7 @@ pub enum Outcome {
         #[serde(default)]
         kind: FailureKind,
         /// Contact points that changed state or segment in the failed attempt, most
-        /// changes first.
+        /// still-changing ones first.
         #[serde(default)]
         points: Vec<ChangingPoint>,
     },

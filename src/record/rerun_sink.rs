@@ -153,13 +153,15 @@ impl RerunSink {
 }
 
 impl Observer for RerunSink {
-    fn start(&mut self, model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
         let stream = self
             .stream
             .take()
             .ok_or_else(|| ObserverError::new(&self.name, "started twice"))?;
-        self.view =
-            Some(RerunView::new(stream, &ModelRecord::new(model)).map_err(|e| ObserverError::new(&self.name, e))?);
+        self.view = Some(
+            RerunView::new(stream, &ModelRecord::new(model, info.settings.stepping.end))
+                .map_err(|e| ObserverError::new(&self.name, e))?,
+        );
         Ok(())
     }
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {

@@ -3,13 +3,15 @@
 
 use super::types::*;
 use super::{locate, SceneError, SceneSource};
-use crate::contact::law::ContactLaw;
 use crate::element::material::{lame, Material};
 use crate::model::mesh::RectMesh;
+use crate::model::ContactLaw;
 use crate::model::{
     chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, OwnedVertex, Piece, Prescribed,
     Ramp, RigidBody, RigidShape, Slave,
 };
+use crate::problem::Problem;
+use crate::settings::SolverSettings;
 
 struct Ctx<'a> {
     src: &'a SceneSource,
@@ -125,6 +127,17 @@ fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
     }
 }
 
+/// Build the problem of a scene: its model and its solver settings.
+pub fn build(src: &SceneSource, s: &SceneFile) -> Result<Problem, SceneError> {
+    Ok(Problem {
+        model: build_model(src, s)?,
+        settings: SolverSettings {
+            stepping: s.stepping.clone(),
+            newton: s.solver.clone(),
+        },
+    })
+}
+
 /// Build the model of a checked scene.
 pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError> {
     super::validate::validate(src, s)?;
@@ -147,8 +160,6 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         loads: Vec::new(),
         rigid: Vec::new(),
         contacts: Vec::new(),
-        stepping: s.stepping.clone(),
-        newton: s.solver.clone(),
         monitor: None,
     };
     for b in &s.bodies {

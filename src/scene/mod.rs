@@ -9,7 +9,7 @@ mod overrides;
 pub mod types;
 pub mod validate;
 
-pub use build::build_model;
+pub use build::{build, build_model};
 pub use overrides::apply_override;
 pub use types::SceneFile;
 

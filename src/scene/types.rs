@@ -3,7 +3,7 @@
 
 use crate::contact::transfer::TransferKind;
 use crate::element::quad::ElementKind;
-use crate::solver::settings::{NewtonSettings, Stepping};
+use crate::settings::{NewtonSettings, Stepping};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 

@@ -10,7 +10,9 @@
 //! they are released and the residual is evaluated again with every point free to choose;
 //! the increment is accepted only if that residual still meets the tolerance (the frozen
 //! state was the consistent one, to tolerance). Otherwise the attempt continues without
-//! freezing and, failing that, the step is cut back.
+//! freezing and, failing that, the step is cut back. (Updating the frozen decisions from the
+//! failed verification instead, a primal–dual active-set round, was tried: on the 120×4
+//! strip at rest on the block it cycled between two active sets at the lift-off point.)
 
 use crate::contact::law::ContactState;
 use crate::contact::system::{ContactSystem, Decision};
@@ -112,13 +114,14 @@ impl ActiveSetWatch {
             .any(|(&l, &c)| c > 0 && l + window > self.iteration)
     }
 
-    /// The points that changed in this attempt, most changes first (at most `max`).
+    /// The points that changed in this attempt, those still changing at the end first, then
+    /// the most changes (at most `max`): the points to blame are the ones that never settled.
     pub fn report(&self, contact: &ContactSystem, model: &crate::model::Model, max: usize) -> Vec<ChangingPoint> {
         let mut idx: Vec<usize> = (0..self.now.len()).filter(|&i| self.changes[i] > 0).collect();
         idx.sort_by_key(|&i| {
             (
-                std::cmp::Reverse(self.changes[i]),
                 std::cmp::Reverse(self.last_change[i]),
+                std::cmp::Reverse(self.changes[i]),
             )
         });
         idx.truncate(max);

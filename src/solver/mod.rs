@@ -3,7 +3,6 @@
 pub mod active_set;
 pub mod newton;
 pub mod run;
-pub mod settings;
 pub mod state;
 
 pub use run::{run, RunSummary, SolveError};

@@ -2,12 +2,12 @@
 //! optional backtracking line search.
 
 use super::active_set::ActiveSetWatch;
-use super::settings::NewtonSettings;
 use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
 use crate::model::Model;
 use crate::record::{FailureKind, IterationRecord};
+use crate::settings::{LineSearch, NewtonSettings};
 
 /// Why an increment failed (the stepping driver cuts the step back on these).
 #[derive(Debug, Clone, thiserror::Error)]
@@ -179,22 +179,19 @@ pub fn solve_increment(
             e0 = energy;
         }
         e_last = energy;
-        let mut step = 1.0;
-        apply(&mut state.u, &asm.dofs.eq, &ws.du, step);
-        if settings.line_search {
-            // backtrack on ‖R‖ (residual-only assemblies)
-            for _ in 0..8 {
-                asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
-                asm.free_residual(&mut ws.r);
-                let rt = norm(&ws.r);
-                if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
-                    break;
-                }
-                // take back half of the current step (no copy of u on the hot path)
-                apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
-                step *= 0.5;
+        apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
+        let step = if !settings.line_search {
+            1.0
+        } else {
+            // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)
+            let g0 = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
+            let slope_ok = settings.line_search_rule == LineSearch::Slope && g0 < 0.0;
+            if slope_ok {
+                slope_search(model, asm, state, t, ws, g0)?
+            } else {
+                residual_backtracking(model, asm, state, t, ws, rn)?
             }
-        }
+        };
         let changes = ws.watch.observe(&state.contact, k + 1);
         if freezing {
             ws.watch
@@ -221,6 +218,86 @@ pub fn solve_increment(
         return Err(NewtonFailure::ActiveSetCycle { iterations, points });
     }
     Err(NewtonFailure::MaxIterations { iterations })
+}
+
+/// Backtracking on `‖R‖` (residual-only assemblies; `state.u` is at `u + Δu` on entry and at
+/// `u + sΔu` on return).
+fn residual_backtracking(
+    model: &Model,
+    asm: &mut Assembler,
+    state: &mut TrialState,
+    t: f64,
+    ws: &mut Workspace,
+    rn: f64,
+) -> Result<f64, NewtonFailure> {
+    let mut step = 1.0;
+    for _ in 0..8 {
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+        asm.free_residual(&mut ws.r);
+        let rt = norm(&ws.r);
+        if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
+            break;
+        }
+        // take back half of the current step (no copy of u on the hot path)
+        apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
+        step *= 0.5;
+    }
+    Ok(step)
+}
+
+/// Regula falsi (Illinois) on the slope `g(s) = Δu·R(u + sΔu)` until
+/// `|g(s)| ≤ 0.8 |g(0)|` (see [`LineSearch::Slope`]); `s = 1` when the full step already
+/// meets it or still descends. At most 8 residual-only assemblies; a non-finite residual
+/// halves the step.
+fn slope_search(
+    model: &Model,
+    asm: &mut Assembler,
+    state: &mut TrialState,
+    t: f64,
+    ws: &mut Workspace,
+    g0: f64,
+) -> Result<f64, NewtonFailure> {
+    const ETA: f64 = 0.8;
+    let (mut s_lo, mut g_lo) = (0.0, g0);
+    let mut s_hi = 1.0;
+    let mut g_hi = f64::NAN;
+    let mut s = 1.0;
+    let mut side = 0i8;
+    for _ in 0..8 {
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+        asm.free_residual(&mut ws.r);
+        let g = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
+        let next = if !g.is_finite() {
+            0.5 * s
+        } else {
+            if g.abs() <= ETA * g0.abs() || (s == 1.0 && g < 0.0) {
+                break;
+            }
+            // keep the root of g bracketed in [s_lo, s_hi]
+            if g < 0.0 {
+                (s_lo, g_lo) = (s, g);
+                if side == -1 {
+                    g_hi *= 0.5;
+                }
+                side = -1;
+            } else {
+                (s_hi, g_hi) = (s, g);
+                if side == 1 {
+                    g_lo *= 0.5;
+                }
+                side = 1;
+            }
+            if g_hi.is_finite() {
+                s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)
+            } else {
+                0.5 * (s_lo + s_hi)
+            }
+        };
+        let next = next.clamp(1e-3, 1.0);
+        apply(&mut state.u, &asm.dofs.eq, &ws.du, next - s);
+        s = next;
+    }
+    Ok(s)
 }
 
 fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {

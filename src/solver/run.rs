@@ -6,10 +6,12 @@ use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::system::Config;
 use crate::model::Model;
+use crate::problem::Problem;
 use crate::record::{
-    ChangingPoint, FailureKind, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer, ObserverError, Outcome,
-    RunInfo, StepView,
+    ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
+    MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
 };
+use crate::settings::SolverSettings;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -122,12 +124,18 @@ fn log(
     })
 }
 
-/// Run the model's load stepping to `stepping.end`, reporting to `obs`. `stop` is polled
+/// Run the problem's load stepping to `stepping.end`, reporting to `obs`. `stop` is polled
 /// between Newton iterations (Ctrl-C).
-pub fn run(model: &Model, info: &RunInfo, obs: &mut dyn Observer, stop: &AtomicBool) -> Result<RunSummary, SolveError> {
+pub fn run(
+    problem: &Problem,
+    info: &RunInfo,
+    obs: &mut dyn Observer,
+    stop: &AtomicBool,
+) -> Result<RunSummary, SolveError> {
     let started = Instant::now();
+    let model = &problem.model;
     obs.start(model, info)?;
-    let result = drive(model, obs, stop, started);
+    let result = drive(model, &problem.settings, obs, stop, started);
     let outcome = match &result {
         Ok(s) => Outcome::Completed {
             increments: s.increments,
@@ -175,8 +183,14 @@ pub fn run(model: &Model, info: &RunInfo, obs: &mut dyn Observer, stop: &AtomicB
     Ok(summary)
 }
 
-fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Instant) -> Result<RunSummary, SolveError> {
-    let st = &model.stepping;
+fn drive(
+    model: &Model,
+    settings: &SolverSettings,
+    obs: &mut dyn Observer,
+    stop: &AtomicBool,
+    started: Instant,
+) -> Result<RunSummary, SolveError> {
+    let st = &settings.stepping;
     let nominal = st.end / st.increments.max(1) as f64;
     let mut asm = Assembler::new(model);
     let mut ws = Workspace::default();
@@ -202,7 +216,7 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
             let mut interrupted = false;
             let res = solve_increment(
                 model,
-                &model.newton,
+                &settings.newton,
                 &mut asm,
                 &mut trial,
                 t_new,
@@ -264,8 +278,15 @@ fn drive(model: &Model, obs: &mut dyn Observer, stop: &AtomicBool, started: Inst
             t,
         };
         // records first: they compare the converged iterate with the previous increment
-        let points = committed.contact.records(&cfg);
-        let crossings = committed.contact.commit(&cfg);
+        let points: Vec<ContactPointRecord> = (committed.contact.snapshots(&cfg).iter())
+            .map(|p| ContactPointRecord::from_snapshot(model, p))
+            .collect();
+        let crossings: Vec<CrossingRecord> = committed
+            .contact
+            .commit(&cfg)
+            .iter()
+            .map(CrossingRecord::from)
+            .collect();
         summary.crossings += crossings.len();
         let mut reaction_total = [0.0; 2];
         for &d in &asm.dofs.prescribed {

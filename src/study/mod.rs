@@ -152,7 +152,7 @@ impl Study {
         stop: &AtomicBool,
     ) -> Result<StudyOutcome, StudyError> {
         let started = Instant::now();
-        let (src, model) = match crate::load_scene(&self.scene, &self.sets) {
+        let (src, problem) = match crate::load_scene(&self.scene, &self.sets) {
             Ok(x) => x,
             Err(e) => {
                 return Ok(StudyOutcome {
@@ -167,7 +167,7 @@ impl Study {
                 })
             }
         };
-        let info = crate::run_info(&src, &self.sets, &model);
+        let info = crate::run_info(&src, &self.sets, &problem);
         let mut mcap = match &opts.mcap {
             Some(p) => Some(create(p, opts.positions_every)?),
             None => None,
@@ -181,7 +181,7 @@ impl Study {
             sinks.push(&mut **o);
         }
         let mut fan = Fanout { sinks };
-        let result = crate::solver::run(&model, &info, &mut fan, stop);
+        let result = crate::solver::run(&problem, &info, &mut fan, stop);
         drop(fan);
         let mut figures = Figures {
             increments: collector.increments,
@@ -190,8 +190,8 @@ impl Study {
             crossings: collector.data.crossings.len(),
             wall_time_s: 0.0,
             t_reached: collector.last_t,
-            t_end: model.stepping.end,
-            dofs: model.dof_count(),
+            t_end: problem.settings.stepping.end,
+            dofs: problem.model.dof_count(),
             transfer: info.transfer.clone(),
         };
         let status = match &result {

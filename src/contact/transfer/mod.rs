@@ -16,30 +16,10 @@ pub use straightforward::Straightforward;
 
 use super::geometry::Projection;
 use super::scalar::{Scalar, V2};
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
 
-/// The transfer scheme of a contact pair.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "kebab-case")]
-pub enum TransferKind {
-    /// Seed eq. (1) with `Δξ = ξ_B − ξ_A` taken across segments as is.
-    Straightforward,
-    /// Seed eqs. (2)–(4): parallel translation in the current configuration.
-    Continuous,
-    /// Wriggers, Krstulovic-Opara & Korelc, IJNME 51 (2001): slip as arc length.
-    PathLength,
-}
+pub use crate::model::TransferKind;
 
 impl TransferKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            TransferKind::Straightforward => "straightforward",
-            TransferKind::Continuous => "continuous",
-            TransferKind::PathLength => "path-length",
-        }
-    }
-
     /// Trial covariant traction on the current segment (dispatch to the scheme).
     pub fn trial<S: Scalar>(self, ctx: &TransferInput<S>) -> S {
         match self {

@@ -1,4 +1,5 @@
-//! Load-stepping and Newton settings (also the `[stepping]` and `[solver]` tables of a scene).
+//! How a model is solved: load-stepping and Newton settings (the `[stepping]` and `[solver]`
+//! tables of a scene). Plain data, kept out of the model: a run = model + these settings.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -32,6 +33,21 @@ impl Default for Stepping {
     }
 }
 
+/// Line-search rule.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum LineSearch {
+    /// Find `s` with `|Δu·R(u + sΔu)| ≤ 0.8 |Δu·R(u)|` (regula falsi on the slope of the
+    /// potential along the correction; Crisfield, Non-linear Finite Element Analysis of
+    /// Solids and Structures, Vol. 1 (1991) §9.3.2; Matthies & Strang, IJNME 14 (1979)).
+    /// For a conservative problem this minimises the energy along the correction, so
+    /// contact points switching open/closed cannot make Newton cycle between two iterates.
+    #[default]
+    Slope,
+    /// Halve `s` until `‖R(u + sΔu)‖ < (1 − 10⁻⁴ s) ‖R(u)‖` (at most 8 halvings).
+    Residual,
+}
+
 /// Newton–Raphson settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -44,8 +60,11 @@ pub struct NewtonSettings {
     /// … and the energy norm `|Δu·R|` of the last correction is `≤ energy_tol` times that of
     /// the first iteration of the increment.
     pub energy_tol: f64,
-    /// Backtracking line search on the residual norm.
+    /// Line search along each Newton correction (see [`LineSearch`]).
     pub line_search: bool,
+    /// Which line search: on the slope of the energy along the correction (default) or
+    /// backtracking on the residual norm.
+    pub line_search_rule: LineSearch,
     /// The iteration is declared divergent when `‖R‖` exceeds this multiple of
     /// `max(‖R₀‖, F_ref)`.
     pub divergence_factor: f64,
@@ -62,8 +81,17 @@ impl Default for NewtonSettings {
             residual_abs: 1e-10,
             energy_tol: 1e-16,
             line_search: false,
+            line_search_rule: LineSearch::Slope,
             divergence_factor: 1e8,
             freeze_after: 4,
         }
     }
+}
+
+/// Everything the solver needs besides the model.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSettings {
+    pub stepping: Stepping,
+    pub newton: NewtonSettings,
 }
