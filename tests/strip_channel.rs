@@ -129,7 +129,9 @@ fn strip_channel_straightforward_fails_at_a_crossing_when_frictional() {
             corner.xi,
             mem.crossings.len()
         );
-        assert!(corner.xi.abs() > 0.95, "C is at a segment boundary");
+        // the last converged state has C within 5 % of a segment length of a node (it has
+        // just crossed, or is about to)
+        assert!(corner.xi.abs() > 0.9, "C is at a segment boundary");
         assert!(!mem.crossings.is_empty());
         for (_, c) in &mem.crossings {
             let jump = (c.trial_after - c.trial_before).abs();
