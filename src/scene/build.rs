@@ -197,6 +197,13 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
             MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
         };
         let mesh = RectMesh::new(origin, size, elements, grading);
+        if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: the mesh has a node at {x:?} (its coordinates overflow)", b.name),
+                "give a smaller mesh size or grading",
+            ));
+        }
         let off = m.nodes.len();
         let bi = m.bodies.len();
         m.nodes.extend(mesh.nodes.iter().copied());

@@ -20,6 +20,11 @@ use toml::Spanned;
 /// its cells (keys are `i64`, cell counts multiply).
 pub const MAX_EXTENT_OVER_RADIUS: f64 = 1e8;
 
+/// Largest distance of a mesh corner from the origin: beyond it a graded mesh's node
+/// coordinates can overflow while origin and size are finite (found by the long scene fuzz:
+/// `size = 1e308` gave a node at `[inf, −9.2e18]`).
+pub const MAX_COORDINATE: f64 = 1e12;
+
 /// Bytes per DOF of the memory estimate (sparse matrix, LU factors with fill, vectors);
 /// calibrated on a 10⁶-element mesh, which used about 4.5 GB before running out of memory.
 pub const BYTES_PER_DOF: f64 = 2_250.0;
@@ -372,13 +377,14 @@ fn body(c: &Check, i: usize, b: &BodySpec, ext: &mut Extent) -> Result<f64, Scen
         let g = grading[k].max(1.0 / grading[k]);
         h = h.min(size[k] / (elements[k] as f64 * g));
     }
-    if !ext.0.is_finite() {
+    let reach = (0..2).map(|k| origin[k].abs() + size[k]).fold(0.0, f64::max);
+    if !ext.0.is_finite() || reach > MAX_COORDINATE {
         return Err(c.fail(
             &mesh,
             &format!("{key}.mesh"),
-            "origin + size",
-            "overflows",
-            "give a smaller mesh",
+            format!("origin + size = {reach:e}"),
+            &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
+            "give a smaller mesh (or change the unit of length)",
         ));
     }
     Ok(h)
