@@ -181,7 +181,17 @@ fn ctrl_c_leaves_a_complete_recording_and_exit_code_130() {
         .unwrap();
     // wait until the recording has started, then press Ctrl-C
     let t0 = std::time::Instant::now();
-    while std::fs::metadata(&out).map_or(0, |m| m.len()) == 0 && t0.elapsed().as_secs() < 30 {
+    // (the recording is written as `.interrupted.mcap.PID.N.part` and renamed at the end)
+    let started = || {
+        std::fs::read_dir(out.parent().unwrap())
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .any(|e| {
+                let f = e.file_name().to_string_lossy().to_string();
+                f.starts_with(".interrupted.mcap.") && f.ends_with(".part") && e.metadata().is_ok_and(|m| m.len() > 0)
+            })
+    };
+    while !started() && t0.elapsed().as_secs() < 30 {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     std::thread::sleep(std::time::Duration::from_millis(300));

@@ -56,7 +56,13 @@ fn sink(path: &Path, positions_every: u64) -> anyhow::Result<Box<dyn Observer>> 
                 positions_every: positions_every as usize,
                 ..McapOptions::default()
             };
-            Box::new(McapSink::new(open(path)?, &name, opts).map_err(|e| BadInput(e.to_string()))?)
+            if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+                std::fs::create_dir_all(dir)
+                    .map_err(|e| BadInput(format!("{}: cannot create directory: {e}", dir.display())))?;
+            }
+            // written as `.NAME.PID.N.part` beside it and renamed when finished: a reader never
+            // sees a half-written file under the name, and concurrent runs do not mix
+            Box::new(McapSink::create(path, opts).map_err(|e| BadInput(e.to_string()))?)
         }
         _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
     })
@@ -183,7 +189,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
                 other => other.to_string(),
             };
             let mut message = format!("{} ({}): {what}", model.name, src.origin);
-            if let Some(p) = mcap {
+            if let Some(p) = mcap.filter(|p| p.exists()) {
                 message.push_str(&format!("\n  the record up to this point is in {}", p.display()));
             }
             Err(RunFailed { message, interrupted }.into())

@@ -200,7 +200,10 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {
             return Err(cx.err(
                 &b.name,
-                format!("body `{}`: the mesh has a node at {x:?} (its coordinates overflow)", b.name),
+                format!(
+                    "body `{}`: the mesh has a node at {x:?} (its coordinates overflow)",
+                    b.name
+                ),
                 "give a smaller mesh size or grading",
             ));
         }

@@ -196,7 +196,15 @@ fn errors_point_at_the_value() {
 fn a_mesh_reaching_beyond_the_coordinate_bound_is_refused() {
     // found by the long scene fuzz (CONTRAIL_FUZZ_CASES=20000): each number finite, the
     // graded mesh's nodes overflowed to [inf, −9.2e18]
-    refused("cantilever", "body.strip.mesh.size=[1e308, 0.5]", &["body.strip.mesh", "1e12"]);
-    refused("cantilever", "body.strip.mesh.origin=[-1e13, 0.0]", &["body.strip.mesh"]);
+    refused(
+        "cantilever",
+        "body.strip.mesh.size=[1e308, 0.5]",
+        &["body.strip.mesh", "1e12"],
+    );
+    refused(
+        "cantilever",
+        "body.strip.mesh.origin=[-1e13, 0.0]",
+        &["body.strip.mesh"],
+    );
     assert_eq!(outcome("cantilever", &["body.strip.mesh.size=[1e6, 0.5]"]), "ok");
 }
