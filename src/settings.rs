@@ -42,6 +42,8 @@ pub enum LineSearch {
     /// Solids and Structures, Vol. 1 (1991) §9.3.2; Matthies & Strang, IJNME 14 (1979)).
     /// For a conservative problem this minimises the energy along the correction, so
     /// contact points switching open/closed cannot make Newton cycle between two iterates.
+    /// With a frictional point in slip the forces have no potential: that iteration
+    /// backtracks on `‖R‖` instead.
     #[default]
     Slope,
     /// Halve `s` until `‖R(u + sΔu)‖ < (1 − 10⁻⁴ s) ‖R(u)‖` (at most 8 halvings).

@@ -299,6 +299,15 @@ impl ContactSystem {
         self.verifying = true;
     }
 
+    /// Whether the contact forces of the current iterate derive from a potential: every
+    /// closed point sticks or is frictionless (a slipping frictional point is not
+    /// conservative, and the slope of an energy along a correction means nothing there).
+    pub fn conservative(&self, model: &Model) -> bool {
+        self.current.iter().zip(&model.contacts).all(|(pts, pair)| {
+            pair.law.mu == 0.0 || pts.iter().all(|p| p.eval.is_none_or(|e| e.state != ContactState::Slip))
+        })
+    }
+
     /// Number of frozen points.
     pub fn frozen_count(&self) -> usize {
         self.frozen.iter().flatten().filter(|f| f.is_some()).count()

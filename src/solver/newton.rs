@@ -185,7 +185,10 @@ pub fn solve_increment(
         } else {
             // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)
             let g0 = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
-            let slope_ok = settings.line_search_rule == LineSearch::Slope && g0 < 0.0;
+            // the slope is that of an energy only for a conservative iterate (no frictional
+            // slip): elsewhere the residual norm is the merit
+            let slope_ok =
+                settings.line_search_rule == LineSearch::Slope && g0 < 0.0 && state.contact.conservative(model);
             if slope_ok {
                 slope_search(model, asm, state, t, ws, g0)?
             } else {
