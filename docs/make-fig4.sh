@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=recordings/fig4
 mkdir -p "$out"
-bin=(cargo run --release --quiet --)
+# CONTRAIL_BIN=path/to/contrail uses a built binary instead of `cargo run --release`
+if [ -n "${CONTRAIL_BIN:-}" ]; then bin=("$CONTRAIL_BIN"); else bin=(cargo run --release --quiet --); fi
 args=()
 for mu in 0 0.1 0.2 0.3; do
   for scheme in continuous straightforward; do
