@@ -115,7 +115,9 @@ def main():
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix="contrail-hostile-")
     os.makedirs(a.keep, exist_ok=True)
-    names = [l.split()[0] for l in subprocess.run([a.bin, "scenes"], capture_output=True, text=True).stdout.splitlines()]
+    listing = subprocess.run([a.bin, "scenes"], capture_output=True, text=True).stdout.splitlines()
+    # one scene per line (name, description); blank line and hint after them
+    names = [l.split()[0] for l in listing if l.strip() and not l.startswith("(")]
     texts = {}
     for n in names:
         with open(os.path.join(os.path.dirname(__file__), "..", "scenes", n + ".toml"), "rb") as f:
