@@ -53,5 +53,7 @@ shot() {
     echo "   docs/view-$name.png"
 }
 
-shot strip-channel strip-channel
+# 300 nominal increments (adaptive, to v = 12): a recording the viewer loads completely before
+# it takes the screenshot (with 1200 it showed whatever increment it had loaded by then)
+shot strip-channel strip-channel --set stepping.increments=300
 shot hertz hertz
