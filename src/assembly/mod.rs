@@ -5,9 +5,25 @@ pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
-use crate::element::quad::{quad_residual_tangent, ElementError};
+use crate::element::quad::{quad_residual_tangent_with, ElementError, QuadGeometry};
 use crate::model::Model;
 use sparse::SparseMatrix;
+use std::time::{Duration, Instant};
+
+/// Where the time of the Newton iterations went (accumulated over a run).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Element kernels and their scatter (residual, and tangent when asked).
+    pub elements: Duration,
+    /// Contact pairing, contact kernels and their scatter.
+    pub contact: Duration,
+    /// Numeric LU factorisations (and the symbolic ones when the pattern changed).
+    pub factorization: Duration,
+    /// Forward and back substitution.
+    pub solve: Duration,
+    pub assemblies: usize,
+    pub factorizations: usize,
+}
 
 const NONE: u32 = u32::MAX;
 
@@ -87,6 +103,10 @@ pub struct Assembler {
     /// Stored energy of the elements at the last assembly.
     pub energy: f64,
     missing: Vec<(usize, usize)>,
+    /// Time spent in assembly (the factorisation times are the matrix's).
+    pub timings: Timings,
+    /// Reference geometry of each element (computed once; an invalid one fails assembly).
+    geometry: Vec<Result<QuadGeometry, ElementError>>,
 }
 
 fn element_eqs(dofs: &DofMap, nodes: &[usize; 4]) -> [Option<usize>; 8] {
@@ -115,6 +135,12 @@ impl Assembler {
             material_floor: material_floor(model),
             energy: 0.0,
             missing: Vec::new(),
+            timings: Timings::default(),
+            geometry: model
+                .elements
+                .iter()
+                .map(|el| QuadGeometry::new(model.bodies[el.body].kind, &el.nodes.map(|n| model.nodes[n])))
+                .collect(),
         };
         a.build_slots(model);
         a
@@ -150,7 +176,9 @@ impl Assembler {
         contact: &mut ContactSystem,
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
+        self.timings.assemblies += 1;
         loop {
+            let started = Instant::now();
             self.r_full.fill(0.0);
             self.r_abs.fill(0.0);
             self.matrix.clear_values();
@@ -159,11 +187,13 @@ impl Assembler {
             let mut ke = [0.0; 64];
             for (ie, el) in model.elements.iter().enumerate() {
                 let body = &model.bodies[el.body];
-                let x: [[f64; 2]; 4] = el.nodes.map(|n| model.nodes[n]);
                 let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
                 let k = if with_tangent { Some(&mut ke) } else { None };
-                self.energy += quad_residual_tangent(body.kind, &body.material, &x, &ue, &mut alphas[ie], &mut re, k)
-                    .map_err(|source| AssemblyError { element: ie, source })?;
+                let fail = |source| AssemblyError { element: ie, source };
+                let geo = self.geometry[ie].as_ref().map_err(|e| fail(*e))?;
+                self.energy +=
+                    quad_residual_tangent_with(body.kind, &body.material, geo, &ue, &mut alphas[ie], &mut re, k)
+                        .map_err(fail)?;
                 for (i, &n) in el.nodes.iter().enumerate() {
                     self.r_full[2 * n] += re[2 * i];
                     self.r_full[2 * n + 1] += re[2 * i + 1];
@@ -179,6 +209,8 @@ impl Assembler {
                 }
             }
             self.missing.clear();
+            let elements_done = Instant::now();
+            self.timings.elements += elements_done - started;
             let cfg = Config { model, u, t };
             let (r_full, r_abs, matrix, missing, dofs) = (
                 &mut self.r_full,
@@ -208,6 +240,7 @@ impl Assembler {
                     }
                 }
             });
+            self.timings.contact += elements_done.elapsed();
             if self.missing.is_empty() {
                 break;
             }
@@ -237,6 +270,16 @@ impl Assembler {
             .map(|(_, a)| a * a)
             .sum();
         (1e-13 * s.sqrt()).max(self.material_floor)
+    }
+
+    /// The assembly timings with the matrix's factorisation and solve times.
+    pub fn timings(&self) -> Timings {
+        Timings {
+            factorization: self.matrix.factor_time,
+            solve: self.matrix.solve_time,
+            factorizations: self.matrix.factorizations,
+            ..self.timings
+        }
     }
 
     /// Residual restricted to the free equations.

@@ -2,9 +2,11 @@
 //! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
 //! factorisation (faer) is reused until the pattern changes.
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, Par};
+use std::time::{Duration, Instant};
 
 /// Failure of the linear solve.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -25,8 +27,18 @@ pub struct SparseMatrix {
     pub values: Vec<f64>,
     symbolic: Option<SymbolicSparseColMat<usize>>,
     lu_symbolic: Option<SymbolicLu<usize>>,
+    /// Numeric factors, workspace and right-hand side, kept across iterations so that a
+    /// factorisation allocates nothing once the pattern is fixed.
+    numeric: NumericLu<usize, f64>,
+    scratch: MemBuffer,
+    rhs: Mat<f64>,
     /// Number of symbolic factorisations performed (pattern changes + 1).
     pub symbolic_factorizations: usize,
+    /// Numeric factorisations performed, and the time spent in them (symbolic analyses
+    /// included) and in the substitutions.
+    pub factorizations: usize,
+    pub factor_time: Duration,
+    pub solve_time: Duration,
 }
 
 impl SparseMatrix {
@@ -51,7 +63,13 @@ impl SparseMatrix {
             values: Vec::new(),
             symbolic: None,
             lu_symbolic: None,
+            numeric: NumericLu::new(),
+            scratch: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
+            rhs: Mat::zeros(0, 1),
             symbolic_factorizations: 0,
+            factorizations: 0,
+            factor_time: Duration::ZERO,
+            solve_time: Duration::ZERO,
         };
         m.compress();
         m
@@ -113,7 +131,15 @@ impl SparseMatrix {
     }
 
     /// Solve `A x = b` in place (LU with partial pivoting, symbolic analysis reused).
+    /// Sequential below [`PARALLEL_FROM`] unknowns (threads cost more than they save on
+    /// small systems), faer's global parallelism above.
     pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
+        let started = Instant::now();
+        let par = if self.n < PARALLEL_FROM {
+            Par::Seq
+        } else {
+            faer::get_global_parallelism()
+        };
         if self.symbolic.is_none() {
             self.symbolic = Some(SymbolicSparseColMat::new_checked(
                 self.n,
@@ -125,24 +151,55 @@ impl SparseMatrix {
         }
         let sym = self.symbolic.as_ref().expect("set above");
         if self.lu_symbolic.is_none() {
-            self.lu_symbolic =
-                Some(SymbolicLu::try_new(sym.as_ref()).map_err(|e| LinearError::Factorization(format!("{e:?}")))?);
+            let lu = factorize_symbolic_lu(sym.as_ref(), Default::default())
+                .map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
+            let req = lu
+                .factorize_numeric_lu_scratch::<f64>(par, Default::default())
+                .or(lu.solve_in_place_scratch::<f64>(1, par));
+            self.scratch = MemBuffer::try_new(req).map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
+            self.lu_symbolic = Some(lu);
+            self.numeric = NumericLu::new();
             self.symbolic_factorizations += 1;
         }
+        let lu_sym = self.lu_symbolic.as_ref().expect("set above");
         let mat = SparseColMatRef::new(sym.as_ref(), &self.values);
-        let lu = Lu::try_new_with_symbolic(self.lu_symbolic.clone().expect("set above"), mat)
+        lu_sym
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                mat,
+                par,
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            )
             .map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
-        let mut rhs = faer::Mat::<f64>::from_fn(self.n, 1, |i, _| b[i]);
-        lu.solve_in_place(rhs.as_mut());
-        for (i, bi) in b.iter_mut().enumerate() {
-            *bi = rhs[(i, 0)];
+        self.factorizations += 1;
+        let factored = Instant::now();
+        self.factor_time += factored - started;
+        if self.rhs.nrows() != self.n {
+            self.rhs = Mat::zeros(self.n, 1);
         }
+        for (i, bi) in b.iter().enumerate() {
+            self.rhs[(i, 0)] = *bi;
+        }
+        LuRef::new_unchecked(lu_sym, &self.numeric).solve_in_place_with_conj(
+            Conj::No,
+            self.rhs.as_mut(),
+            par,
+            MemStack::new(&mut self.scratch),
+        );
+        for (i, bi) in b.iter_mut().enumerate() {
+            *bi = self.rhs[(i, 0)];
+        }
+        self.solve_time += factored.elapsed();
         if b.iter().any(|v| !v.is_finite()) {
             return Err(LinearError::NonFinite);
         }
         Ok(())
     }
 }
+
+/// Systems with at least this many unknowns are factorised with faer's global parallelism.
+pub const PARALLEL_FROM: usize = 20_000;
 
 #[cfg(test)]
 mod tests {

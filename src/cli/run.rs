@@ -5,6 +5,7 @@ use super::progress::Progress;
 use super::summary::{inspect_hint, progress_lines, Tracker};
 use super::{BadInput, RunFailed};
 use contrail::format::{compact_list, plain};
+use contrail::record::background::Background;
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
@@ -62,7 +63,9 @@ fn sink(path: &Path, positions_every: u64) -> anyhow::Result<Box<dyn Observer>> 
             }
             // written as `.NAME.PID.N.part` beside it and renamed when finished: a reader never
             // sees a half-written file under the name, and concurrent runs do not mix
-            Box::new(McapSink::create(path, opts).map_err(|e| BadInput(e.to_string()))?)
+            let mcap = McapSink::create(path, opts).map_err(|e| BadInput(e.to_string()))?;
+            // serialised and written on a thread of its own (`record::background`)
+            Box::new(Background::new(Box::new(mcap), &name))
         }
         _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
     })
@@ -163,6 +166,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             "wall time",
             format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
         );
+        row(&mut o, "time spent", time_split(s));
     }
     for p in &a.out {
         row(&mut o, "written", p.display().to_string());
@@ -195,4 +199,29 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             Err(RunFailed { message, interrupted }.into())
         }
     }
+}
+
+/// Where the wall time went: elements, contact, LU factorisations, substitutions,
+/// recording and the rest (stepping, copies of the state), in seconds and per cent.
+fn time_split(s: &contrail::solver::RunSummary) -> String {
+    let t = &s.timings;
+    let parts = [
+        ("elements", t.elements.as_secs_f64()),
+        ("contact", t.contact.as_secs_f64()),
+        ("LU", t.factorization.as_secs_f64()),
+        ("solve", t.solve.as_secs_f64()),
+        ("recording", s.recording_s),
+    ];
+    let known: f64 = parts.iter().map(|p| p.1).sum();
+    let total = s.wall_time_s.max(known).max(1e-12);
+    let mut out: Vec<String> = parts
+        .iter()
+        .chain(std::iter::once(&("other", total - known)))
+        .map(|(k, v)| format!("{k} {:.3} s ({:.0} %)", v, 100.0 * v / total))
+        .collect();
+    out.push(format!(
+        "{} assemblies, {} factorisations",
+        t.assemblies, t.factorizations
+    ));
+    out.join(", ")
 }

@@ -85,81 +85,105 @@ fn jacobian(x: &[[f64; 2]; 4], d: &[[f64; 4]; 2]) -> Matrix2<f64> {
     j
 }
 
-/// Per-Gauss-point quantities that do not depend on `α`.
-struct GaussData {
+/// Per-Gauss-point quantities of the reference configuration (independent of `u` and `α`).
+#[derive(Debug, Clone, Copy)]
+struct GaussGeom {
     /// `∂N_I/∂X_a`
     grad: [[f64; 4]; 2],
     /// `j · w` (weights are 1 for 2×2 Gauss)
     dv: f64,
-    f: Matrix2<f64>,
-    /// `δE_c = B δu`
-    b: Mat38,
     /// `Ẽ = G α`
     g: Mat34,
 }
 
-fn gauss_data(kind: ElementKind, x: &[[f64; 2]; 4], u: &[[f64; 2]; 4]) -> Result<[GaussData; 4], ElementError> {
-    let d0 = dn_dxi(0.0, 0.0);
-    let j0 = jacobian(x, &d0);
-    let det0 = j0.determinant();
-    if det0 <= 0.0 {
-        return Err(ElementError::BadGeometry(det0));
-    }
-    let a = j0.try_inverse().ok_or(ElementError::BadGeometry(det0))?;
-    // T0: covariant (ξ,η) Voigt strain -> Cartesian Voigt strain (engineering shear).
-    let t0 = Matrix3::new(
-        a[(0, 0)] * a[(0, 0)],
-        a[(1, 0)] * a[(1, 0)],
-        a[(0, 0)] * a[(1, 0)],
-        a[(0, 1)] * a[(0, 1)],
-        a[(1, 1)] * a[(1, 1)],
-        a[(0, 1)] * a[(1, 1)],
-        2.0 * a[(0, 0)] * a[(0, 1)],
-        2.0 * a[(1, 0)] * a[(1, 1)],
-        a[(0, 0)] * a[(1, 1)] + a[(1, 0)] * a[(0, 1)],
-    );
-    let mk = |&(xi, eta): &(f64, f64)| -> Result<GaussData, ElementError> {
-        let d = dn_dxi(xi, eta);
-        let jm = jacobian(x, &d);
-        let det = jm.determinant();
-        if det <= 0.0 {
-            return Err(ElementError::BadGeometry(det));
+/// Reference geometry of one quadrilateral at its four Gauss points: shape-function
+/// gradients, volume weights and the EAS interpolation `G = (j₀/j) T₀ M`. It depends on the
+/// reference coordinates only, so an assembler computes it once per element.
+#[derive(Debug, Clone, Copy)]
+pub struct QuadGeometry {
+    gp: [GaussGeom; 4],
+}
+
+impl QuadGeometry {
+    /// Geometry of the element with reference nodes `x` (counter-clockwise); fails on a
+    /// non-positive Jacobian at the centre or a Gauss point.
+    pub fn new(kind: ElementKind, x: &[[f64; 2]; 4]) -> Result<Self, ElementError> {
+        let d0 = dn_dxi(0.0, 0.0);
+        let j0 = jacobian(x, &d0);
+        let det0 = j0.determinant();
+        if det0 <= 0.0 {
+            return Err(ElementError::BadGeometry(det0));
         }
-        let jinv = jm.try_inverse().ok_or(ElementError::BadGeometry(det))?;
-        let mut grad = [[0.0; 4]; 2];
-        for i in 0..4 {
-            for a2 in 0..2 {
-                // ∂N/∂X_a = Σ_b ∂N/∂ξ_b (J⁻¹)_ba
-                grad[a2][i] = d[0][i] * jinv[(0, a2)] + d[1][i] * jinv[(1, a2)];
+        let a = j0.try_inverse().ok_or(ElementError::BadGeometry(det0))?;
+        // T0: covariant (ξ,η) Voigt strain -> Cartesian Voigt strain (engineering shear).
+        let t0 = Matrix3::new(
+            a[(0, 0)] * a[(0, 0)],
+            a[(1, 0)] * a[(1, 0)],
+            a[(0, 0)] * a[(1, 0)],
+            a[(0, 1)] * a[(0, 1)],
+            a[(1, 1)] * a[(1, 1)],
+            a[(0, 1)] * a[(1, 1)],
+            2.0 * a[(0, 0)] * a[(0, 1)],
+            2.0 * a[(1, 0)] * a[(1, 1)],
+            a[(0, 0)] * a[(1, 1)] + a[(1, 0)] * a[(0, 1)],
+        );
+        let mk = |&(xi, eta): &(f64, f64)| -> Result<GaussGeom, ElementError> {
+            let d = dn_dxi(xi, eta);
+            let jm = jacobian(x, &d);
+            let det = jm.determinant();
+            if det <= 0.0 {
+                return Err(ElementError::BadGeometry(det));
             }
-        }
-        let mut f = Matrix2::identity();
-        for i in 0..4 {
-            for r in 0..2 {
-                for c in 0..2 {
-                    f[(r, c)] += u[i][r] * grad[c][i];
+            let jinv = jm.try_inverse().ok_or(ElementError::BadGeometry(det))?;
+            let mut grad = [[0.0; 4]; 2];
+            for i in 0..4 {
+                for a2 in 0..2 {
+                    // ∂N/∂X_a = Σ_b ∂N/∂ξ_b (J⁻¹)_ba
+                    grad[a2][i] = d[0][i] * jinv[(0, a2)] + d[1][i] * jinv[(1, a2)];
                 }
             }
-        }
-        let mut b = Mat38::zeros();
-        for i in 0..4 {
-            let (n1, n2) = (grad[0][i], grad[1][i]);
-            for r in 0..2 {
-                b[(0, 2 * i + r)] = f[(r, 0)] * n1;
-                b[(1, 2 * i + r)] = f[(r, 1)] * n2;
-                b[(2, 2 * i + r)] = f[(r, 0)] * n2 + f[(r, 1)] * n1;
-            }
-        }
-        let g = match kind {
-            ElementKind::Q4 => Mat34::zeros(),
-            ElementKind::Q4Eas => {
-                let m = Mat34::new(xi, 0.0, 0.0, 0.0, 0.0, eta, 0.0, 0.0, 0.0, 0.0, xi, eta);
-                (det0 / det) * t0 * m
-            }
+            let g = match kind {
+                ElementKind::Q4 => Mat34::zeros(),
+                ElementKind::Q4Eas => {
+                    let m = Mat34::new(xi, 0.0, 0.0, 0.0, 0.0, eta, 0.0, 0.0, 0.0, 0.0, xi, eta);
+                    (det0 / det) * t0 * m
+                }
+            };
+            Ok(GaussGeom { grad, dv: det, g })
         };
-        Ok(GaussData { grad, dv: det, f, b, g })
-    };
-    Ok([mk(&GAUSS[0])?, mk(&GAUSS[1])?, mk(&GAUSS[2])?, mk(&GAUSS[3])?])
+        Ok(QuadGeometry {
+            gp: [mk(&GAUSS[0])?, mk(&GAUSS[1])?, mk(&GAUSS[2])?, mk(&GAUSS[3])?],
+        })
+    }
+}
+
+/// Deformation gradient and strain–displacement matrix at one Gauss point.
+struct GaussKin {
+    f: Matrix2<f64>,
+    /// `δE_c = B δu`
+    b: Mat38,
+}
+
+fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
+    let grad = &geo.grad;
+    let mut f = Matrix2::identity();
+    for i in 0..4 {
+        for r in 0..2 {
+            for c in 0..2 {
+                f[(r, c)] += u[i][r] * grad[c][i];
+            }
+        }
+    }
+    let mut b = Mat38::zeros();
+    for i in 0..4 {
+        let (n1, n2) = (grad[0][i], grad[1][i]);
+        for r in 0..2 {
+            b[(0, 2 * i + r)] = f[(r, 0)] * n1;
+            b[(1, 2 * i + r)] = f[(r, 1)] * n2;
+            b[(2, 2 * i + r)] = f[(r, 0)] * n2 + f[(r, 1)] * n1;
+        }
+    }
+    GaussKin { f, b }
 }
 
 fn green_lagrange(f: &Matrix2<f64>) -> Vector3<f64> {
@@ -167,16 +191,8 @@ fn green_lagrange(f: &Matrix2<f64>) -> Vector3<f64> {
     Vector3::new(0.5 * (c[(0, 0)] - 1.0), 0.5 * (c[(1, 1)] - 1.0), c[(0, 1)])
 }
 
-/// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness.
-///
-/// * `x` — reference nodal coordinates (counter-clockwise), `u` — nodal displacements;
-/// * `alpha` — enhanced-strain parameters: read as the starting guess, overwritten with the
-///   values that satisfy `R_α = 0` for this `u` (ignored for [`ElementKind::Q4`]);
-/// * `r` — internal force `R* = ∂Π/∂u` (condensed), local DOF order `[u1x, u1y, u2x, …]`;
-/// * `k` — `∂R*/∂u`, row-major 8×8, when requested.
-///
-/// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
-/// global residual is `r − f_ext`.
+/// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness
+/// (builds the [`QuadGeometry`] and calls [`quad_residual_tangent_with`]).
 pub fn quad_residual_tangent(
     kind: ElementKind,
     material: &Material,
@@ -186,91 +202,122 @@ pub fn quad_residual_tangent(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
-    let gp = gauss_data(kind, x, u)?;
-    let ec: [Vector3<f64>; 4] = [
-        green_lagrange(&gp[0].f),
-        green_lagrange(&gp[1].f),
-        green_lagrange(&gp[2].f),
-        green_lagrange(&gp[3].f),
+    let geo = QuadGeometry::new(kind, x)?;
+    quad_residual_tangent_with(kind, material, &geo, u, alpha, r, k)
+}
+
+/// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness,
+/// on its precomputed reference geometry.
+///
+/// * `geo` — [`QuadGeometry`] of the reference nodes (counter-clockwise), `u` — nodal
+///   displacements;
+/// * `alpha` — enhanced-strain parameters: read as the starting guess, overwritten with the
+///   values that satisfy `R_α = 0` for this `u` (ignored for [`ElementKind::Q4`]);
+/// * `r` — internal force `R* = ∂Π/∂u` (condensed), local DOF order `[u1x, u1y, u2x, …]`;
+/// * `k` — `∂R*/∂u`, row-major 8×8, when requested.
+///
+/// The local Newton iteration on `α` evaluates only `R_α`, `K_αα` in its first pass; every
+/// later pass also evaluates `R_u`, `K_uu`, `K_uα`, so the pass that finds `R_α` converged
+/// is the one whose condensed residual and tangent are returned (two passes over the Gauss
+/// points for St. Venant–Kirchhoff from any starting `α`).
+///
+/// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
+/// global residual is `r − f_ext`.
+pub fn quad_residual_tangent_with(
+    kind: ElementKind,
+    material: &Material,
+    geo: &QuadGeometry,
+    u: &[[f64; 2]; 4],
+    alpha: &mut [f64; 4],
+    r: &mut [f64; 8],
+    k: Option<&mut [f64; 64]>,
+) -> Result<f64, ElementError> {
+    let kin = [
+        kinematics(&geo.gp[0], u),
+        kinematics(&geo.gp[1], u),
+        kinematics(&geo.gp[2], u),
+        kinematics(&geo.gp[3], u),
     ];
+    let ec: [Vector3<f64>; 4] = [
+        green_lagrange(&kin[0].f),
+        green_lagrange(&kin[1].f),
+        green_lagrange(&kin[2].f),
+        green_lagrange(&kin[3].f),
+    ];
+    let eas = kind == ElementKind::Q4Eas;
     let mut al = SVector::<f64, 4>::from_column_slice(alpha);
-    if kind == ElementKind::Q4 {
+    if !eas {
         al.fill(0.0);
     }
-    // Local Newton on α (one step is exact for linear S(E)).
-    let mut kaa = Mat44::zeros();
-    let mut ra = SVector::<f64, 4>::zeros();
-    if kind == ElementKind::Q4Eas {
-        let mut converged = false;
-        let mut last = 0.0;
-        for it in 0..25 {
-            kaa.fill(0.0);
-            ra.fill(0.0);
-            let mut scale = 0.0f64;
-            for (q, g) in gp.iter().enumerate() {
-                let e = ec[q] + g.g * al;
-                let (s, d) = material.stress_tangent(&e)?;
-                ra += g.g.transpose() * s * g.dv;
-                kaa += g.g.transpose() * d * g.g * g.dv;
-                scale = scale.max(d.norm() * g.dv);
-            }
-            last = ra.norm();
-            if it > 0 && last <= 1e-13 * scale.max(1e-300) * (1.0 + al.norm()) {
-                converged = true;
-                break;
-            }
-            let lu = kaa.lu();
-            let da = lu.solve(&ra).ok_or(ElementError::EasNotConverged(last))?;
-            al -= da;
-            if da.norm() <= 1e-15 * (1.0 + al.norm()) {
-                converged = true;
-                // refresh R_α, K_αα at the final α below
-                break;
-            }
-        }
-        if !converged {
-            return Err(ElementError::EasNotConverged(last));
-        }
-    }
+    let want_k = k.is_some();
     let mut ru = SVector::<f64, 8>::zeros();
     let mut kuu = Mat88::zeros();
     let mut kua = Mat84::zeros();
-    kaa.fill(0.0);
-    ra.fill(0.0);
+    let mut kaa = Mat44::zeros();
+    let mut ra = SVector::<f64, 4>::zeros();
     let mut energy = 0.0;
-    let want_k = k.is_some();
-    for (q, g) in gp.iter().enumerate() {
-        let e = ec[q] + g.g * al;
-        let (s, d) = material.stress_tangent(&e)?;
-        energy += material.energy(&e)? * g.dv;
-        ru += g.b.transpose() * s * g.dv;
-        if kind == ElementKind::Q4Eas {
-            ra += g.g.transpose() * s * g.dv;
+    let mut last_step = false;
+    // Local Newton on α (one step is exact for linear S(E)); the displacement terms are
+    // evaluated from the second pass on (a pass at a converged α is the last one).
+    for it in 0..=25 {
+        let full = !eas || it > 0;
+        kaa.fill(0.0);
+        ra.fill(0.0);
+        if full {
+            ru.fill(0.0);
+            kuu.fill(0.0);
+            kua.fill(0.0);
+            energy = 0.0;
         }
-        if want_k {
-            let db = d * g.b;
-            kuu += g.b.transpose() * db * g.dv;
-            // geometric stiffness δ_ab ∇N_I · S ∇N_J
-            let sm = Matrix2::new(s[0], s[2], s[2], s[1]);
-            for i in 0..4 {
-                for j in 0..4 {
-                    let gi = nalgebra::Vector2::new(g.grad[0][i], g.grad[1][i]);
-                    let gj = nalgebra::Vector2::new(g.grad[0][j], g.grad[1][j]);
-                    let v = gi.dot(&(sm * gj)) * g.dv;
-                    kuu[(2 * i, 2 * j)] += v;
-                    kuu[(2 * i + 1, 2 * j + 1)] += v;
+        let mut scale = 0.0f64;
+        for (q, (g, kq)) in geo.gp.iter().zip(&kin).enumerate() {
+            let e = ec[q] + g.g * al;
+            let (s, d) = material.stress_tangent(&e)?;
+            if eas {
+                ra += g.g.transpose() * s * g.dv;
+                let dg = d * g.g;
+                kaa += g.g.transpose() * dg * g.dv;
+                scale = scale.max(d.norm() * g.dv);
+                if full {
+                    kua += kq.b.transpose() * dg * g.dv;
                 }
             }
-            if kind == ElementKind::Q4Eas {
-                kua += db.transpose() * g.g * g.dv;
-                kaa += g.g.transpose() * d * g.g * g.dv;
+            if !full {
+                continue;
             }
-        } else if kind == ElementKind::Q4Eas {
-            kaa += g.g.transpose() * d * g.g * g.dv;
-            kua += (d * g.b).transpose() * g.g * g.dv;
+            energy += material.energy(&e)? * g.dv;
+            ru += kq.b.transpose() * s * g.dv;
+            if want_k {
+                kuu += kq.b.transpose() * (d * kq.b) * g.dv;
+                // geometric stiffness δ_ab ∇N_I · S ∇N_J
+                let sm = Matrix2::new(s[0], s[2], s[2], s[1]);
+                for i in 0..4 {
+                    let gi = nalgebra::Vector2::new(g.grad[0][i], g.grad[1][i]);
+                    let sgi = sm * gi;
+                    for j in 0..4 {
+                        let v = sgi.dot(&nalgebra::Vector2::new(g.grad[0][j], g.grad[1][j])) * g.dv;
+                        kuu[(2 * i, 2 * j)] += v;
+                        kuu[(2 * i + 1, 2 * j + 1)] += v;
+                    }
+                }
+            }
         }
+        if !eas {
+            break;
+        }
+        let last = ra.norm();
+        if full && (last_step || last <= 1e-13 * scale.max(1e-300) * (1.0 + al.norm())) {
+            break;
+        }
+        if it == 25 {
+            return Err(ElementError::EasNotConverged(last));
+        }
+        let da = kaa.lu().solve(&ra).ok_or(ElementError::EasNotConverged(last))?;
+        al -= da;
+        // a step below round-off: one more pass evaluates everything at this α
+        last_step = da.norm() <= 1e-15 * (1.0 + al.norm());
     }
-    if kind == ElementKind::Q4Eas {
+    if eas {
         let inv = kaa.try_inverse().ok_or(ElementError::EasNotConverged(ra.norm()))?;
         ru -= kua * (inv * ra);
         if let Some(kout) = k {
@@ -301,12 +348,12 @@ pub fn quad_centre_stress(
     u: &[[f64; 2]; 4],
     alpha: &[f64; 4],
 ) -> Result<(Vector3<f64>, Vector3<f64>), ElementError> {
-    let gp = gauss_data(kind, x, u)?;
+    let geo = QuadGeometry::new(kind, x)?;
     let al = SVector::<f64, 4>::from_column_slice(alpha);
     // centre value = Gauss average (the enhanced field averages to zero)
     let mut e = Vector3::zeros();
-    for g in &gp {
-        e += 0.25 * (green_lagrange(&g.f) + g.g * al);
+    for g in &geo.gp {
+        e += 0.25 * (green_lagrange(&kinematics(g, u).f) + g.g * al);
     }
     let (s, _) = material.stress_tangent(&e)?;
     Ok((e, s))

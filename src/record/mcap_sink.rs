@@ -64,7 +64,7 @@ pub struct McapSink<W: Write + Seek> {
 }
 
 /// Called at `finish` with the output and whether everything was written.
-type Finalise<W> = Box<dyn FnOnce(W, bool) -> std::io::Result<()>>;
+type Finalise<W> = Box<dyn FnOnce(W, bool) -> std::io::Result<()> + Send>;
 
 impl McapSink<AtomicFile> {
     /// Record to the file `path`: written under a temporary name in the same directory and

@@ -2,6 +2,7 @@
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
 pub mod atomic_file;
+pub mod background;
 pub mod csv;
 mod failure;
 pub mod jsonl;

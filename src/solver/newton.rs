@@ -108,8 +108,13 @@ pub fn solve_increment(
     let mut freezing = settings.freeze_after > 0;
     let mut verified_once = false;
     let mut started = false;
+    // the line search's full-step trial assembles the tangent too: when it accepts s = 1,
+    // the next iteration starts from that assembly instead of repeating it
+    let mut fresh = false;
     for k in 0..=settings.max_iterations {
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        if !std::mem::take(&mut fresh) {
+            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        }
         if !started {
             ws.watch.start(&state.contact);
             ws.frozen.clear();
@@ -180,8 +185,8 @@ pub fn solve_increment(
         }
         e_last = energy;
         apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
-        let step = if !settings.line_search {
-            1.0
+        let (step, reuse) = if !settings.line_search {
+            (1.0, false)
         } else {
             // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)
             let g0 = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
@@ -196,10 +201,13 @@ pub fn solve_increment(
             }
         };
         let changes = ws.watch.observe(&state.contact, k + 1);
-        if freezing {
-            ws.watch
-                .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen);
-        }
+        // frozen decisions change what the next assembly computes
+        let froze = freezing
+            && ws
+                .watch
+                .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
+                > 0;
+        fresh = reuse && !froze;
         let keep_going = record(IterationRecord {
             increment,
             attempt,
@@ -223,8 +231,10 @@ pub fn solve_increment(
     Err(NewtonFailure::MaxIterations { iterations })
 }
 
-/// Backtracking on `‖R‖` (residual-only assemblies; `state.u` is at `u + Δu` on entry and at
-/// `u + sΔu` on return).
+/// Backtracking on `‖R‖` (`state.u` is at `u + Δu` on entry and at `u + sΔu` on return).
+/// The full-step trial assembles the tangent as well, the shorter ones the residual only;
+/// returns `(s, reuse)`, `reuse` when the assembler holds the full assembly at the returned
+/// iterate (the full step was accepted).
 fn residual_backtracking(
     model: &Model,
     asm: &mut Assembler,
@@ -232,25 +242,27 @@ fn residual_backtracking(
     t: f64,
     ws: &mut Workspace,
     rn: f64,
-) -> Result<f64, NewtonFailure> {
+) -> Result<(f64, bool), NewtonFailure> {
     let mut step = 1.0;
     for _ in 0..8 {
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+        let full = step == 1.0;
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
         asm.free_residual(&mut ws.r);
         let rt = norm(&ws.r);
         if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
-            break;
+            return Ok((step, full));
         }
         // take back half of the current step (no copy of u on the hot path)
         apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
         step *= 0.5;
     }
-    Ok(step)
+    Ok((step, false))
 }
 
 /// Regula falsi (Illinois) on the slope `g(s) = Δu·R(u + sΔu)` until
 /// `|g(s)| ≤ 0.8 |g(0)|` (see [`LineSearch::Slope`]); `s = 1` when the full step already
-/// meets it or still descends. At most 8 residual-only assemblies; a non-finite residual
+/// meets it or still descends. At most 8 assemblies (the full-step one with the tangent, to
+/// be reused when `s = 1` is accepted: the second value returned); a non-finite residual
 /// halves the step.
 fn slope_search(
     model: &Model,
@@ -259,7 +271,7 @@ fn slope_search(
     t: f64,
     ws: &mut Workspace,
     g0: f64,
-) -> Result<f64, NewtonFailure> {
+) -> Result<(f64, bool), NewtonFailure> {
     const ETA: f64 = 0.8;
     let (mut s_lo, mut g_lo) = (0.0, g0);
     let mut s_hi = 1.0;
@@ -267,14 +279,15 @@ fn slope_search(
     let mut s = 1.0;
     let mut side = 0i8;
     for _ in 0..8 {
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+        let full = s == 1.0;
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
         asm.free_residual(&mut ws.r);
         let g = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
         let next = if !g.is_finite() {
             0.5 * s
         } else {
             if g.abs() <= ETA * g0.abs() || (s == 1.0 && g < 0.0) {
-                break;
+                return Ok((s, full));
             }
             // keep the root of g bracketed in [s_lo, s_hi]
             if g < 0.0 {
@@ -300,7 +313,7 @@ fn slope_search(
         apply(&mut state.u, &asm.dofs.eq, &ws.du, next - s);
         s = next;
     }
-    Ok(s)
+    Ok((s, false))
 }
 
 fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {

@@ -3,7 +3,7 @@
 
 use super::newton::{solve_increment, Workspace};
 use super::state::TrialState;
-use crate::assembly::Assembler;
+use crate::assembly::{Assembler, Timings};
 use crate::contact::system::Config;
 use crate::model::Model;
 use crate::problem::Problem;
@@ -11,7 +11,7 @@ use crate::record::{
     ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
     MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
 };
-use crate::settings::SolverSettings;
+use crate::settings::{Predictor, SolverSettings};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -87,6 +87,10 @@ pub struct RunSummary {
     pub t: f64,
     pub monitor: Option<MonitorRecord>,
     pub symbolic_factorizations: usize,
+    /// Where the time of the Newton iterations went.
+    pub timings: Timings,
+    /// Time spent handing records to the observer (serialising, writing, viewing).
+    pub recording_s: f64,
 }
 
 fn monitor(model: &Model, asm: &Assembler, u: &[f64], t: f64) -> Option<MonitorRecord> {
@@ -201,10 +205,16 @@ fn drive(
     let mut streak = 0;
     let mut fref = 0.0f64;
     let mut increment = 0;
+    // the last converged increment `(uₙ − uₙ₋₁, Δtₙ)`, for the secant predictor
+    let mut last_du = vec![0.0; model.dof_count()];
+    let mut last_dt: Option<f64> = None;
+    let mut recording = std::time::Duration::ZERO;
     while t < st.end * (1.0 - 1e-12) {
         increment += 1;
         let t_inc = Instant::now();
         let mut attempt = 0;
+        let mut cuts = 0;
+        let mut predict = st.predictor == Predictor::Secant && last_dt.is_some();
         let (state, conv, t_new) = loop {
             let mut t_new = (t + dt).min(st.end);
             if st.end - t_new < 1e-6 * dt {
@@ -212,6 +222,14 @@ fn drive(
             }
             let mut trial = committed.clone();
             trial.contact.reset_current();
+            if let (true, Some(dt_last)) = (predict, last_dt) {
+                let ratio = (t_new - t) / dt_last;
+                for (d, e) in asm.dofs.eq.iter().enumerate() {
+                    if e.is_some() {
+                        trial.u[d] += ratio * last_du[d];
+                    }
+                }
+            }
             let mut obs_err = None;
             let mut interrupted = false;
             let res = solve_increment(
@@ -222,9 +240,11 @@ fn drive(
                 t_new,
                 fref,
                 &mut |rec| {
+                    let handed = Instant::now();
                     if let Err(e) = obs.iteration(&rec) {
                         obs_err = Some(e);
                     }
+                    recording += handed.elapsed();
                     interrupted = stop.load(Ordering::Relaxed);
                     obs_err.is_none() && !interrupted
                 },
@@ -239,14 +259,29 @@ fn drive(
             }
             match res {
                 Ok(c) => break (trial, c, t_new),
+                Err(f) if predict => {
+                    // a predicted start that fails is retried from the converged state first
+                    log(
+                        obs,
+                        LogLevel::Info,
+                        increment,
+                        t_new,
+                        format!(
+                            "increment {increment} at t = {t_new:.6}: {f} from the predicted start; \
+                             retrying from the last converged state"
+                        ),
+                    )?;
+                    predict = false;
+                    attempt += 1;
+                }
                 Err(f) => {
                     // the step may not fall below nominal / 2^max_cutbacks, however it got there
-                    if attempt >= st.max_cutbacks || dt * 0.5 < nominal * 0.5f64.powi(st.max_cutbacks as i32) {
+                    if cuts >= st.max_cutbacks || dt * 0.5 < nominal * 0.5f64.powi(st.max_cutbacks as i32) {
                         return Err(SolveError::StepFailed {
                             increment,
                             t: t_new,
                             dt,
-                            cutbacks: attempt,
+                            cutbacks: cuts,
                             reason: f.to_string(),
                             residuals: ws.residuals.clone(),
                             kind: f.kind(),
@@ -262,11 +297,16 @@ fn drive(
                     )?;
                     dt *= 0.5;
                     attempt += 1;
+                    cuts += 1;
                     summary.cutbacks += 1;
                     streak = 0;
                 }
             }
         };
+        for ((d, a), b) in last_du.iter_mut().zip(&state.u).zip(&committed.u) {
+            *d = a - b;
+        }
+        last_dt = Some(t_new - t);
         committed = state;
         let t_prev = t;
         t = t_new;
@@ -278,6 +318,7 @@ fn drive(
             t,
         };
         // records first: they compare the converged iterate with the previous increment
+        let handed = Instant::now();
         let points: Vec<ContactPointRecord> = (committed.contact.snapshots(&cfg).iter())
             .map(|p| ContactPointRecord::from_snapshot(model, p))
             .collect();
@@ -297,7 +338,7 @@ fn drive(
             t,
             dt: t_new - t_prev,
             iterations: conv.iterations,
-            cutbacks: attempt,
+            cutbacks: cuts,
             converged: true,
             wall_time_s: t_inc.elapsed().as_secs_f64(),
             residuals: conv.residuals,
@@ -314,6 +355,7 @@ fn drive(
                 crossings: &crossings,
             },
         )?;
+        recording += handed.elapsed();
         summary.increments = increment;
         streak += 1;
         if streak >= st.grow_after && dt < nominal {
@@ -324,5 +366,7 @@ fn drive(
     summary.t = t;
     summary.wall_time_s = started.elapsed().as_secs_f64();
     summary.symbolic_factorizations = asm.matrix.symbolic_factorizations;
+    summary.timings = asm.timings();
+    summary.recording_s = recording.as_secs_f64();
     Ok(summary)
 }

@@ -1,0 +1,253 @@
+//! An observer on a thread of its own: the solver's thread hands owned copies of the
+//! records to a bounded channel and goes on solving, while a writer thread serialises them
+//! into the wrapped sink (an MCAP file: JSON encoding and chunking cost about as much as a
+//! small model's solve). On two cores the recording then costs the solver little more than
+//! copying the records.
+//!
+//! Ordering and completeness are those of the wrapped sink: messages are handled in the
+//! order they were sent, and [`Observer::finish`] waits until the writer has handled every
+//! earlier record and finished the sink, so a finished run (failed, interrupted or
+//! completed) leaves the same file as the sink would have written on the solver's thread.
+//! A sink error surfaces at the solver's next call (the run stops there) or at `finish`.
+
+use super::{
+    ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome,
+    RunInfo, StepView,
+};
+use crate::model::Model;
+use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+
+/// Records queued before the solver waits for the writer.
+const QUEUE: usize = 256;
+
+enum Message {
+    Start(Box<Model>, Box<RunInfo>),
+    Iteration(IterationRecord),
+    Increment {
+        rec: IncrementRecord,
+        u: Vec<f64>,
+        contact: Vec<ContactPointRecord>,
+        crossings: Vec<CrossingRecord>,
+    },
+    Log(LogRecord),
+    Finish(Outcome),
+}
+
+/// The first error of the wrapped sink, shared with the writer thread.
+type Failure = Arc<Mutex<Option<ObserverError>>>;
+
+/// Runs a sink on a writer thread (see the module documentation).
+pub struct Background {
+    name: String,
+    tx: Option<SyncSender<Message>>,
+    worker: Option<JoinHandle<Result<(), ObserverError>>>,
+    failure: Failure,
+}
+
+impl Background {
+    /// Start the writer thread for `inner`; `name` names the sink in error messages.
+    pub fn new(inner: Box<dyn Observer + Send>, name: &str) -> Self {
+        let (tx, rx) = sync_channel(QUEUE);
+        let failure: Failure = Arc::default();
+        let shared = failure.clone();
+        let worker = std::thread::Builder::new()
+            .name(format!("contrail-writer {name}"))
+            .spawn(move || write(inner, rx, shared))
+            .ok();
+        Background {
+            name: name.to_string(),
+            tx: worker.is_some().then_some(tx),
+            worker,
+            failure,
+        }
+    }
+
+    fn send(&mut self, m: Message) -> Result<(), ObserverError> {
+        if let Some(e) = self.failure.lock().ok().and_then(|mut f| f.take()) {
+            return Err(e);
+        }
+        let sent = self.tx.as_ref().map(|tx| tx.send(m).is_ok()).unwrap_or(false);
+        if sent {
+            Ok(())
+        } else {
+            Err(self.stopped())
+        }
+    }
+
+    /// The writer is gone: its result (or why it could not start).
+    fn stopped(&mut self) -> ObserverError {
+        self.tx = None;
+        match self.worker.take().map(JoinHandle::join) {
+            Some(Ok(Err(e))) => e,
+            Some(Err(_)) => ObserverError::new(&self.name, "the writer thread panicked"),
+            _ => ObserverError::new(&self.name, "the writer thread is not running"),
+        }
+    }
+}
+
+fn write(mut inner: Box<dyn Observer + Send>, rx: Receiver<Message>, failure: Failure) -> Result<(), ObserverError> {
+    let mut model: Option<Box<Model>> = None;
+    let mut failed = false;
+    for m in rx {
+        let r = match m {
+            Message::Finish(outcome) => return inner.finish(&outcome),
+            // after an error the sink sees nothing but `finish`
+            _ if failed => Ok(()),
+            Message::Start(m, info) => {
+                let r = inner.start(&m, &info);
+                model = Some(m);
+                r
+            }
+            Message::Iteration(rec) => inner.iteration(&rec),
+            Message::Increment {
+                rec,
+                u,
+                contact,
+                crossings,
+            } => match &model {
+                Some(model) => inner.increment(
+                    &rec,
+                    &StepView {
+                        model,
+                        u: &u,
+                        contact: &contact,
+                        crossings: &crossings,
+                    },
+                ),
+                None => Ok(()),
+            },
+            Message::Log(rec) => inner.log(&rec),
+        };
+        if let Err(e) = r {
+            failed = true;
+            if let Ok(mut f) = failure.lock() {
+                f.get_or_insert(e);
+            }
+        }
+    }
+    Ok(())
+}
+
+impl Observer for Background {
+    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+        self.send(Message::Start(Box::new(model.clone()), Box::new(info.clone())))
+    }
+    fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
+        self.send(Message::Iteration(rec.clone()))
+    }
+    fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+        self.send(Message::Increment {
+            rec: rec.clone(),
+            u: view.u.to_vec(),
+            contact: view.contact.to_vec(),
+            crossings: view.crossings.to_vec(),
+        })
+    }
+    fn log(&mut self, rec: &LogRecord) -> Result<(), ObserverError> {
+        self.send(Message::Log(rec.clone()))
+    }
+    /// Waits for the writer to handle every record and finish the sink.
+    fn finish(&mut self, outcome: &Outcome) -> Result<(), ObserverError> {
+        let earlier = self.failure.lock().ok().and_then(|mut f| f.take());
+        let sent = self
+            .tx
+            .take()
+            .map(|tx| tx.send(Message::Finish(outcome.clone())).is_ok())
+            .unwrap_or(false);
+        let finished = match self.worker.take().map(JoinHandle::join) {
+            Some(Ok(r)) if sent => r,
+            Some(Ok(Err(e))) => Err(e),
+            Some(Err(_)) => Err(ObserverError::new(&self.name, "the writer thread panicked")),
+            _ => Err(ObserverError::new(&self.name, "the writer thread is not running")),
+        };
+        match (earlier, finished) {
+            (Some(e), _) => Err(e),
+            (None, r) => r,
+        }
+    }
+}
+
+impl Drop for Background {
+    /// A run that never called `finish` (a panic) still lets the writer drain and stop.
+    fn drop(&mut self) {
+        self.tx = None;
+        if let Some(w) = self.worker.take() {
+            let _ = w.join();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sink that keeps what it got (for the order test) and fails on demand.
+    struct Shared(Arc<Mutex<Vec<String>>>, Option<usize>);
+    impl Observer for Shared {
+        fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
+            if Some(rec.iteration) == self.1 {
+                return Err(ObserverError::new("shared", "disk full"));
+            }
+            self.0.lock().unwrap().push(format!("it {}", rec.iteration));
+            Ok(())
+        }
+        fn finish(&mut self, _o: &Outcome) -> Result<(), ObserverError> {
+            self.0.lock().unwrap().push("finish".into());
+            Ok(())
+        }
+    }
+
+    fn it(k: usize) -> IterationRecord {
+        IterationRecord {
+            increment: 1,
+            attempt: 0,
+            t: 0.1,
+            iteration: k,
+            residual: 1.0,
+            energy: 1.0,
+            reference: 1.0,
+            line_search: 1.0,
+            active_set_changes: 0,
+        }
+    }
+
+    fn done() -> Outcome {
+        Outcome::Completed { increments: 1, t: 1.0 }
+    }
+
+    #[test]
+    fn records_arrive_in_order_and_finish_waits_for_them() {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let mut b = Background::new(Box::new(Shared(seen.clone(), None)), "test");
+        for k in 1..=1000 {
+            b.iteration(&it(k)).unwrap();
+        }
+        b.finish(&done()).unwrap();
+        let seen = seen.lock().unwrap();
+        assert_eq!(seen.len(), 1001);
+        assert_eq!(seen[0], "it 1");
+        assert_eq!(seen[999], "it 1000");
+        assert_eq!(seen[1000], "finish");
+    }
+
+    #[test]
+    fn a_sink_error_stops_the_run_and_finish_still_reaches_the_sink() {
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let mut b = Background::new(Box::new(Shared(seen.clone(), Some(3))), "test");
+        let mut first_err = None;
+        for k in 1..=2000 {
+            if let Err(e) = b.iteration(&it(k)) {
+                first_err = Some((k, e.to_string()));
+                break;
+            }
+        }
+        let (k, msg) = first_err.expect("the error surfaces at a later call");
+        assert!(k > 3 && msg.contains("disk full"), "{k}: {msg}");
+        b.finish(&done()).unwrap();
+        let seen = seen.lock().unwrap();
+        assert_eq!(seen.last().map(String::as_str), Some("finish"));
+        assert!(!seen.iter().any(|s| s == "it 4"), "nothing after the error: {seen:?}");
+    }
+}
