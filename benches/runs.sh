@@ -37,7 +37,7 @@ for c in "${cases[@]}"; do
   for _ in $(seq "$REPEAT"); do
     rc=0
     /usr/bin/time -f "%e %U %S" -o "$TMP/time" "$BIN" run $args --quiet >"$TMP/out" 2>&1 || rc=$?
-    read -r wall user sys <"$TMP/time"
+    read -r wall user sys < <(tail -n1 "$TMP/time")
     if [ -z "$best" ] || awk "BEGIN{exit !($wall < $best)}"; then
       best="$wall"
       cpu=$(awk "BEGIN{printf \"%.2f\", $user + $sys}")
