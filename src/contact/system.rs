@@ -145,18 +145,25 @@ impl Config<'_> {
     }
 }
 
-/// Local node slots of one contact point.
+/// Local node slots of one contact point (at most [`MAX_NODES`], kept on the stack: the
+/// contact evaluation allocates nothing per point and iteration).
 pub(super) struct Slots {
-    nodes: Vec<usize>,
+    ids: [usize; MAX_NODES],
+    len: usize,
 }
 
 impl Slots {
+    /// The global nodes of the slots, in slot order.
+    pub(super) fn nodes(&self) -> &[usize] {
+        &self.ids[..self.len]
+    }
     fn slot(&mut self, n: usize) -> usize {
-        if let Some(i) = self.nodes.iter().position(|&m| m == n) {
+        if let Some(i) = self.nodes().iter().position(|&m| m == n) {
             return i;
         }
-        self.nodes.push(n);
-        self.nodes.len() - 1
+        self.ids[self.len] = n;
+        self.len += 1;
+        self.len - 1
     }
     fn source(&mut self, cfg: &Config, pair: &ContactPair, k: usize) -> SegSource {
         match cfg.seg_source(pair, k) {
@@ -185,7 +192,8 @@ pub(super) fn local_problem(
     closed: Option<(StoredTraction, usize, Path, Option<f64>)>,
 ) -> (PointProblem, Slots) {
     let mut slots = Slots {
-        nodes: Vec::with_capacity(MAX_NODES),
+        ids: [0; MAX_NODES],
+        len: 0,
     };
     let slave_src = match slave {
         Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
@@ -199,14 +207,14 @@ pub(super) fn local_problem(
         touch_gap,
     });
     let mut x = [[0.0; 2]; MAX_NODES];
-    for (i, &n) in slots.nodes.iter().enumerate() {
+    for (i, &n) in slots.nodes().iter().enumerate() {
         x[i] = cfg.node(n);
     }
     let problem = PointProblem {
         law: pair.law,
         scheme: pair.transfer,
         x,
-        n_nodes: slots.nodes.len(),
+        n_nodes: slots.len,
         slave: slave_src,
         seg_b,
         closed,
@@ -410,11 +418,11 @@ impl ContactSystem {
                 if !self.verifying {
                     problem.forced = self.frozen[ip][is].map(|f| f.state);
                 }
-                let nd = 2 * slots.nodes.len();
+                let nd = 2 * slots.len;
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);
                 if e.state != ContactState::Open && nd > 0 {
-                    assemble(&slots.nodes, &r[..nd], &k[..nd * nd]);
+                    assemble(slots.nodes(), &r[..nd], &k[..nd * nd]);
                 }
             }
         }
