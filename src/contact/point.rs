@@ -183,14 +183,9 @@ impl PointProblem {
         }
     }
 
-    /// Positions of the slots as plain numbers.
-    fn q_f64(&self) -> Vec<V2<f64>> {
-        self.x[..self.n_nodes].to_vec()
-    }
-
     /// Plain evaluation (for recording and search).
     pub fn evaluate_f64(&self) -> PointEval<f64> {
-        self.evaluate(&self.q_f64())
+        self.evaluate(&self.x[..self.n_nodes])
     }
 
     /// Local residual `r` (length `2 n_nodes`) and tangent `k` (row-major) for this point;
@@ -207,15 +202,18 @@ impl PointProblem {
     }
 
     fn rk<const N: usize>(&self, r: &mut [f64], k: &mut [f64]) -> PointEval<f64> {
-        let q: Vec<V2<Dual2SVec64<N>>> = (0..self.n_nodes)
-            .map(|i| {
+        // slot positions as dual numbers, on the stack (no allocation per point)
+        let q: [V2<Dual2SVec64<N>>; MAX_NODES] = std::array::from_fn(|i| {
+            if i < self.n_nodes {
                 [
                     Dual2SVec64::<N>::from_re(self.x[i][0]).derivative(2 * i),
                     Dual2SVec64::<N>::from_re(self.x[i][1]).derivative(2 * i + 1),
                 ]
-            })
-            .collect();
-        let e = self.evaluate(&q);
+            } else {
+                [Dual2SVec64::<N>::from_re(0.0), Dual2SVec64::<N>::from_re(0.0)]
+            }
+        });
+        let e = self.evaluate(&q[..self.n_nodes]);
         r[..N].fill(0.0);
         k[..N * N].fill(0.0);
         if e.state != ContactState::Open {

@@ -1,0 +1,87 @@
+//! A steady-state Newton iteration allocates nothing (issue 8: no per-iteration allocation or
+//! hashing in the hot path).
+//!
+//! Setting: the seed's strip-channel on a 48×2 mesh (μ = 0.2), first brought to a converged
+//! state with the corner C in contact (the block nodes paired, open) by Newton itself (`solve_increment` at
+//! v = 0.02 from rest). Then, with a counting global allocator, 20 repetitions of what one
+//! Newton iteration does to the model — full assembly (elements, contact pairing, contact
+//! kernels, scatter into the fixed CSC pattern), a residual-only assembly (the line search's
+//! trial) and the sparse LU factorisation with its solve — must make **zero** allocations.
+//! Tolerance: none (a count). Per-increment work (copying the state, the records) is not
+//! part of this claim.
+
+mod common;
+
+use contrail::assembly::Assembler;
+use contrail::contact::law::ContactState;
+use contrail::solver::newton::{solve_increment, Workspace};
+use contrail::solver::state::TrialState;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn a_steady_state_newton_iteration_allocates_nothing() {
+    let problem = common::scene("strip-channel", &["body.strip.mesh.elements=[48,2]", "contact.mu=0.2"]);
+    let model = &problem.model;
+    let mut asm = Assembler::new(model);
+    let mut state = TrialState::new(model);
+    let mut ws = Workspace::default();
+    // v = 0.02 of 12 in one increment from rest: the strip bends over C
+    let t = 0.02 / 12.0;
+    state.contact.reset_current();
+    solve_increment(
+        model,
+        &problem.settings.newton,
+        &mut asm,
+        &mut state,
+        t,
+        0.0,
+        &mut |_| true,
+        (1, 0),
+        &mut ws,
+    )
+    .expect("the first increment converges");
+    let closed = state
+        .contact
+        .current
+        .iter()
+        .flatten()
+        .filter(|p| p.eval.is_some_and(|e| e.state != ContactState::Open))
+        .count();
+    assert!(closed >= 1, "contact is active ({closed} closed points)");
+
+    let mut r = vec![0.0; asm.dofs.n_free];
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for _ in 0..20 {
+        // the line search's residual-only trial, then a full assembly (it clears the values)
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)
+            .unwrap();
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)
+            .unwrap();
+        asm.free_residual(&mut r);
+        asm.matrix.solve(&mut r).unwrap();
+    }
+    let made = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    assert_eq!(made, 0, "allocations in 20 steady-state iterations");
+}
