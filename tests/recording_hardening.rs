@@ -130,7 +130,8 @@ impl Seek for Full {
 fn a_full_disk_is_an_error_with_its_cause_not_a_panic() {
     let (model, info) = load(&["stepping.increments=12", "stepping.end=0.3"]);
     let size = small_recording().len() as u64;
-    for room in [0, 8, 100, size / 3, size - 10] {
+    // (not `size − 10`: wall times in the records make sizes vary by a few bytes run to run)
+    for room in [0, 8, 100, size / 3, size * 9 / 10] {
         let out = Full {
             inner: Cursor::new(Vec::new()),
             room,
