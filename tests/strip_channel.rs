@@ -43,7 +43,7 @@ const SEED: [&str; 3] = [
 ];
 
 fn run(mu: f64, scheme: &str) -> Memory {
-    run_with(mu, scheme, "stepping.predictor=secant")
+    run_with(mu, scheme, "stepping.predictor=secant") // the default, named for the reader
 }
 
 fn run_with(mu: f64, scheme: &str, extra: &str) -> Memory {
