@@ -9,3 +9,4 @@ pub mod scalar;
 pub mod search;
 pub mod system;
 pub mod transfer;
+pub mod vertex;

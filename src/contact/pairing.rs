@@ -25,7 +25,8 @@
 //!    segment it is on while its projection is valid (hysteresis: no flip-flop); inside the
 //!    body at a concave vertex (the face wrapped round an obstacle's corner) a penetrating
 //!    point in the wedge between the two normals projects onto neither segment: it keeps its
-//!    segment, extended a little past the end ([`concave_wedge`]), instead of being released.
+//!    segment and is pinned to the vertex ([`concave_wedge`], [`super::vertex`]: gap and
+//!    normal from the vertex, continuous with both segments), instead of being released.
 //! 4. **Owned vertices.** When a vertex of a rigid outline is itself a slave point of another
 //!    pair (the corner C against the strip's bottom face), the slave nodes of the master
 //!    segment that C presses on (paired, `ζ < 0`) are not paired with the outline's pieces
@@ -60,6 +61,9 @@ pub struct Pairing {
     pub located: Option<Located>,
     /// The point would be paired but its vertex region is owned by another pair.
     pub excluded: bool,
+    /// The point is in the wedge of a concave vertex at the end of `segment` its `ξ` points
+    /// to: it is pinned to that vertex (point-to-node form, [`super::vertex`]).
+    pub pinned: bool,
 }
 
 /// Locate slave `slave` of `pair`, starting from `start` when it is tracked.
@@ -99,6 +103,7 @@ pub fn locate(
         segment: Some(loc.segment),
         located: valid.then_some(loc),
         excluded: false,
+        pinned: wedge && loc.xi.abs() > 1.0 + XI_TOL,
     }
 }
 
@@ -108,15 +113,20 @@ pub fn held(cfg: &Config, pair: &ContactPair, slave: Slave, segment: Option<usiz
     let Some(s) = segment else {
         return Pairing::default();
     };
-    let p = cfg.segment(pair, s).project(cfg.slave_pos(slave));
+    let rs = cfg.slave_pos(slave);
+    let p = cfg.segment(pair, s).project(rs);
+    let loc = Located {
+        segment: s,
+        xi: p.xi,
+        gap: p.gap,
+    };
+    let geom = |k: usize| cfg.segment(pair, k);
+    let nb = |k: usize| pair.master.neighbours(k);
     Pairing {
         segment,
-        located: Some(Located {
-            segment: s,
-            xi: p.xi,
-            gap: p.gap,
-        }),
+        located: Some(loc),
         excluded: false,
+        pinned: concave_wedge(loc, s, rs, &geom, &nb).is_some(),
     }
 }
 

@@ -19,6 +19,7 @@ use super::geometry::{Projection, SegmentGeom};
 use super::law::{return_map, ContactLaw, ContactState};
 use super::scalar::{lift, Scalar, V2};
 use super::transfer::{OldPoint, StoredTraction, TransferInput, TransferKind};
+use super::vertex;
 use crate::model::Piece;
 use nalgebra::{Const, U1};
 use num_dual::Dual2SVec64;
@@ -84,8 +85,12 @@ pub struct PointProblem {
     pub closed: Option<Closed>,
     /// A state held fixed by the solver (a point that chattered within an increment):
     /// `Open` ignores penetration, `Stick`/`Slip` keep the penalty active whatever the sign
-    /// of the gap and force that branch of the return mapping. `None`: decided by the data.
+    /// of the gap. Stick or slip is still the return mapping's, on the data (see
+    /// [`return_map`]): only open/closed is held. `None`: decided by the data.
     pub forced: Option<ContactState>,
+    /// `Some(±1)`: the point is in the wedge of a concave vertex of the master at that end of
+    /// `B` and is pinned to the vertex (point-to-node form, [`super::vertex`]).
+    pub at_vertex: Option<f64>,
 }
 
 /// Result of a point evaluation in scalar type `S`.
@@ -113,7 +118,10 @@ impl PointProblem {
             SlaveSource::Fixed(p) => lift(p),
         };
         let gb = seg_geom(&self.seg_b, q);
-        let proj = gb.project(rs);
+        let proj = match self.at_vertex {
+            Some(end) => vertex::pinned_projection(&gb, rs, end),
+            None => gb.project(rs),
+        };
         let zero = S::from(0.0);
         let open = match self.forced {
             Some(state) => state == ContactState::Open,
@@ -130,10 +138,10 @@ impl PointProblem {
         }
         let normal_force = -proj.gap * self.law.eps_n;
         let Some(c) = self.closed else {
-            let state = match self.forced {
-                Some(state) => state,
-                None if self.law.mu > 0.0 => ContactState::Stick,
-                None => ContactState::Slip,
+            let state = if self.law.mu > 0.0 {
+                ContactState::Stick
+            } else {
+                ContactState::Slip
             };
             return PointEval {
                 proj,
@@ -173,7 +181,7 @@ impl PointProblem {
             let penetration = -proj.gap;
             t1_trial *= penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
         }
-        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11, self.forced);
+        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11);
         PointEval {
             proj,
             normal_force,
@@ -230,6 +238,14 @@ impl PointProblem {
                 for j in 0..N {
                     k[N * i + j] = en * (gz[i] * gz[j] + z * hz[(i, j)]) - gx[i] * gt[j] - t * hx[(i, j)];
                 }
+            }
+            if self.at_vertex.is_some() && self.law.mu > 0.0 {
+                // ξ is pinned (∇ξ = 0 above): the traction acts along the vertex tangent
+                let rs = match self.slave {
+                    SlaveSource::Node(i) => q[i],
+                    SlaveSource::Fixed(p) => lift(p),
+                };
+                vertex::add_tangential(rs, e.proj.rho, e.t1, e.proj.a11, &mut r[..N], &mut k[..N * N]);
             }
         }
         PointEval {

@@ -35,6 +35,7 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
             touch_gap: None,
         }),
         forced: None,
+        at_vertex: None,
     }
 }
 
@@ -197,6 +198,7 @@ fn rigid_arc_master_tangent_matches_fd() {
             touch_gap: None,
         }),
         forced: None,
+        at_vertex: None,
     };
     fd_check(&p, ContactState::Stick);
     p.law.mu = 0.01;
@@ -248,6 +250,7 @@ fn slave_force_is_normal_push_plus_traction() {
             touch_gap: None,
         }),
         forced: None,
+        at_vertex: None,
     };
     let mut r = [0.0; 2];
     let mut k = [0.0; 4];
@@ -257,4 +260,139 @@ fn slave_force_is_normal_push_plus_traction() {
     // slid +0.1 in x from the anchor: friction on the slave is −ε_T·0.1 in x
     assert!((-r[0] + 5.0).abs() < 1e-12, "{r:?}");
     assert!((e.t1 + 5.0).abs() < 1e-12);
+}
+
+/// A frozen point (the solver holds it closed) inside the Coulomb cone is in stick: freezing
+/// holds open/closed only, never the slip branch, and the stick tangent stays consistent.
+#[test]
+fn frozen_closed_point_inside_the_cone_sticks_with_a_consistent_tangent() {
+    for forced in [ContactState::Slip, ContactState::Stick] {
+        let mut p = base(Continuous, ContactLaw { mu: 1e3, ..LAW }, 0.8);
+        p.forced = Some(forced);
+        fd_check(&p, ContactState::Stick);
+    }
+}
+
+/// Along a path on which the trial traction of a frozen point reverses, the residual is
+/// continuous (it jumped by `2 μ N √a11` when the frozen slip branch was held).
+#[test]
+fn frozen_point_residual_is_continuous_when_the_trial_traction_reverses() {
+    let mut p = base(Continuous, ContactLaw { mu: 0.3, ..LAW }, 0.0);
+    let c = p.closed.as_mut().unwrap();
+    c.seg_a = SegSource::Face([1, 2]);
+    c.path = Path {
+        direction: 0,
+        between: 0.0,
+    };
+    // anchor at the slave's current projection: the trial traction is zero there
+    let xi = p.evaluate_f64().proj.xi;
+    p.closed.as_mut().unwrap().stored.xi = xi;
+    p.forced = Some(ContactState::Slip);
+    let residual = |dx: f64| {
+        let mut q = p;
+        q.x[0][0] += dx;
+        let mut r = [0.0; 8];
+        let mut k = [0.0; 64];
+        q.residual_tangent(&mut r, &mut k);
+        r
+    };
+    let h = 1e-9;
+    let (left, right) = (residual(-h), residual(h));
+    let jump = left.iter().zip(&right).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let scale = residual(1e-3).iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(jump < 1e-6 * scale, "residual jumps by {jump} (scale {scale})");
+}
+
+/// Wedge of a concave vertex: A = [3, 1] rises to the vertex (slot 1), B = [1, 2] falls from
+/// it, the body is above; the slave sits just above the vertex, past the end of A and
+/// before the start of B. Tracked on A, pinned to A's end (`ξ = +1`).
+fn wedge(mu: f64, slave: [f64; 2]) -> PointProblem {
+    let mut p = base(Continuous, ContactLaw { mu, ..LAW }, 0.0);
+    p.x[1] = [0.0, 0.01];
+    p.x[2] = [0.8, 0.0];
+    p.x[3] = [-0.5, 0.0];
+    p.x[0] = slave;
+    p.seg_b = SegSource::Face([3, 1]);
+    let c = p.closed.as_mut().unwrap();
+    c.seg_a = SegSource::Face([3, 1]);
+    c.stored = StoredTraction {
+        xi: 0.7,
+        t1: 0.6,
+        a11: 0.0626,
+    };
+    c.path = Path {
+        direction: 0,
+        between: 0.0,
+    };
+    p.at_vertex = Some(1.0);
+    p
+}
+
+#[test]
+fn point_pinned_to_a_concave_vertex_has_fd_consistent_tangents() {
+    let inside = [0.00002, 0.015];
+    let unpinned = PointProblem {
+        at_vertex: None,
+        ..wedge(0.3, inside)
+    };
+    let e = unpinned.evaluate_f64();
+    assert!(e.proj.xi > 1.0 && e.proj.gap < 0.0, "past the end of A: {:?}", e.proj);
+    fd_check(&wedge(1e3, inside), ContactState::Stick);
+    fd_check(&wedge(0.01, inside), ContactState::Slip);
+    fd_check(&wedge(0.0, inside), ContactState::Slip);
+    // rigid slave (the corner C) pinned to a node of the face
+    let mut q = wedge(1e3, inside);
+    q.x = [q.x[1], q.x[2], q.x[3], [0.0; 2], [0.0; 2]];
+    q.n_nodes = 3;
+    q.slave = SlaveSource::Fixed(inside);
+    q.seg_b = SegSource::Face([2, 0]);
+    q.closed.as_mut().unwrap().seg_a = SegSource::Face([2, 0]);
+    fd_check(&q, ContactState::Stick);
+    // the pinned gap is the distance to the vertex, the normal force a spring to it
+    let e = wedge(0.0, inside).evaluate_f64();
+    let d = (inside[0] * inside[0] + (inside[1] - 0.01) * (inside[1] - 0.01f64)).sqrt();
+    assert!((e.proj.gap + d).abs() < 1e-15 && e.proj.xi == 1.0);
+}
+
+/// At the boundary of the wedge (slave on A's normal through the vertex) the pinned and the
+/// node-to-segment forms give the same residual on the slave for every friction coefficient,
+/// and on the master nodes without friction; with friction the share of A's two nodes
+/// differs by `O(t ζ / l)` (A's rotation moves the projected point, not the vertex).
+#[test]
+fn pinned_and_segment_forms_agree_at_the_boundary_of_the_wedge() {
+    // A's unit normal into the body (left of the direction 3 → 1)
+    let (a, b): ([f64; 2], [f64; 2]) = ([-0.5, 0.0], [0.0, 0.01]);
+    let l = ((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1])).sqrt();
+    let inward = [-(b[1] - a[1]) / l, (b[0] - a[0]) / l];
+    let depth = 0.004;
+    let on_normal = [b[0] + depth * inward[0], b[1] + depth * inward[1]];
+    for mu in [0.0, 0.01, 1e3] {
+        let pinned = wedge(mu, on_normal);
+        let segment = PointProblem {
+            at_vertex: None,
+            ..pinned
+        };
+        assert!((segment.evaluate_f64().proj.xi - 1.0).abs() < 1e-12);
+        let (mut rp, mut rs) = ([0.0; 8], [0.0; 8]);
+        let mut k = [0.0; 64];
+        let ep = pinned.residual_tangent(&mut rp, &mut k);
+        let es = segment.residual_tangent(&mut rs, &mut k);
+        assert_eq!(ep.state, es.state);
+        let scale = rs.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let t = es.t1.abs() / es.proj.a11.sqrt();
+        for i in 0..8 {
+            let exact = i < 2 || mu == 0.0;
+            let bound = if exact {
+                1e-9 * scale
+            } else {
+                2.0 * t * depth / l + 1e-9 * scale
+            };
+            assert!(
+                (rp[i] - rs[i]).abs() <= bound,
+                "mu {mu} dof {i}: {} vs {}",
+                rp[i],
+                rs[i]
+            );
+        }
+    }
 }

@@ -75,7 +75,8 @@ pub struct ContactSystem {
     /// Search grid of each pair for points not yet tracked (built once per increment).
     grids: Vec<Option<SegmentGrid>>,
     /// Decisions held fixed by the solver for the rest of the increment (chattering
-    /// points): the segment is kept and the state is the kernel's `forced` state.
+    /// points): the segment and the open/closed decision are kept (the kernel's `forced`
+    /// state); stick or slip is still decided by the return mapping.
     frozen: Vec<Vec<Option<Decision>>>,
     /// Verification of frozen points: their states are free again, their segments are kept
     /// where the projection is still (to 1 %) on the segment.
@@ -219,6 +220,7 @@ pub(super) fn local_problem(
         seg_b,
         closed,
         forced: None,
+        at_vertex: None,
     };
     (problem, slots)
 }
@@ -379,9 +381,10 @@ impl ContactSystem {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 if let Some(f) = self.frozen[ip][is] {
                     let held = pairing::held(cfg, pair, slave, f.segment);
-                    let admissible = held
-                        .located
-                        .is_some_and(|l| l.xi.abs() <= 1.0 + pairing::HELD_EXTENSION);
+                    let admissible = held.pinned
+                        || held
+                            .located
+                            .is_some_and(|l| l.xi.abs() <= 1.0 + pairing::HELD_EXTENSION);
                     if !self.verifying || admissible {
                         self.pairings[ip][is] = held;
                     }
@@ -418,6 +421,7 @@ impl ContactSystem {
                 if !self.verifying {
                     problem.forced = self.frozen[ip][is].map(|f| f.state);
                 }
+                problem.at_vertex = paired.pinned.then_some(loc.xi.signum());
                 let nd = 2 * slots.len;
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);

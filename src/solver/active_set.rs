@@ -5,8 +5,10 @@
 //! Remedy (the standard one of implicit contact codes, e.g. Wriggers, Computational Contact
 //! Mechanics (2006) §5.3 and the "chattering" controls of commercial codes): a point whose
 //! decision changed `freeze_after` times within the attempt is *frozen* — its segment and
-//! state are held for the rest of the attempt (the kernel keeps the penalty active or
-//! inactive and the return-mapping branch fixed). When Newton converges with frozen points,
+//! its open/closed decision are held for the rest of the attempt (the kernel keeps the
+//! penalty active or inactive). Stick or slip stays the return mapping's, which is
+//! continuous in the trial traction: holding the slip branch made the traction jump by
+//! `2 μ N` when the trial reversed along a Newton step, and the residual had no zero. When Newton converges with frozen points,
 //! they are released and the residual is evaluated again with every point free to choose;
 //! the increment is accepted only if that residual still meets the tolerance (the frozen
 //! state was the consistent one, to tolerance). Otherwise the attempt continues without
