@@ -187,7 +187,10 @@ fn node_table(file: &str, msh: &MshFile<u64, i32, f64>) -> Result<HashMap<u64, [
         match &b.node_tags {
             Some(tags) => {
                 for (&tag, &i) in tags {
-                    let n = b.nodes.get(i).ok_or_else(|| bad(format!("node {tag} out of its block")))?;
+                    let n = b
+                        .nodes
+                        .get(i)
+                        .ok_or_else(|| bad(format!("node {tag} out of its block")))?;
                     table.insert(tag, [n.x, n.y, n.z]);
                 }
             }

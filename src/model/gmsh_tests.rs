@@ -83,8 +83,14 @@ fn triangles_are_rejected_with_the_recombine_hint() {
     let text = two_quads("2 5 6 3", "0").replace("2 1 3 2\n6 1 2 5 4\n7 2 5 6 3", "2 1 2 2\n6 1 2 5\n7 2 6 5");
     let e = read_gmsh("t.msh", text.as_bytes()).unwrap_err();
     let msg = e.to_string();
-    assert!(matches!(e, GmshError::UnsupportedElement { code: 2, count: 2, .. }), "{msg}");
-    assert!(msg.contains("t.msh") && msg.contains("triangle") && msg.contains("RecombineAll"), "{msg}");
+    assert!(
+        matches!(e, GmshError::UnsupportedElement { code: 2, count: 2, .. }),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("t.msh") && msg.contains("triangle") && msg.contains("RecombineAll"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -93,12 +99,18 @@ fn bad_files_are_typed_errors() {
         (two_quads("2 5 6 3", "0.5"), "z = 5"),
         (two_quads("2 5 6 9", "0"), "node 9"),
         (two_quads("2 3 5 6", "0"), "degenerate"),
-        (two_quads("2 5 6 3", "0").replace("\n1 1 0\n", "\n1.9 0.1 0\n"), "not convex"),
+        (
+            two_quads("2 5 6 3", "0").replace("\n1 1 0\n", "\n1.9 0.1 0\n"),
+            "not convex",
+        ),
         (two_quads("2 3 3 6", "0"), "degenerate"),
         ("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n".into(), "MSH format 2.2"),
         ("$MeshFormat\n4.1 0 4\n$EndMeshFormat\n".into(), "MSH format 4.1 0 4"),
         ("hello".into(), "$MeshFormat"),
-        (two_quads("2 5 6 3", "0").replace("$Nodes\n1 6", "$Nodes\n1 7"), "inconsistent"),
+        (
+            two_quads("2 5 6 3", "0").replace("$Nodes\n1 6", "$Nodes\n1 7"),
+            "inconsistent",
+        ),
         {
             let t = two_quads("2 5 6 3", "0");
             (t[..t.find("$Elements").unwrap() + 12].to_string(), "not a readable")
@@ -107,7 +119,10 @@ fn bad_files_are_typed_errors() {
     for (text, expect) in cases {
         let e = read_gmsh("bad.msh", text.as_bytes()).expect_err(expect);
         let msg = e.to_string();
-        assert!(msg.contains("bad.msh") && msg.contains(expect), "expected `{expect}` in: {msg}");
+        assert!(
+            msg.contains("bad.msh") && msg.contains(expect),
+            "expected `{expect}` in: {msg}"
+        );
     }
 }
 
