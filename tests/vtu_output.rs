@@ -16,14 +16,21 @@ use std::sync::atomic::AtomicBool;
 
 /// Decode the inline binary `DataArray` called `name` (UInt64 byte count + little-endian f64).
 fn array(xml: &str, name: &str) -> Vec<f64> {
-    let start = xml.find(&format!("Name=\"{name}\"")).unwrap_or_else(|| panic!("no array {name}"));
+    let start = xml
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("no array {name}"));
     let body = &xml[start..];
     let from = body.find('>').unwrap() + 1;
     let to = body.find("</DataArray>").unwrap();
-    let raw = base64::engine::general_purpose::STANDARD.decode(body[from..to].trim()).unwrap();
+    let raw = base64::engine::general_purpose::STANDARD
+        .decode(body[from..to].trim())
+        .unwrap();
     let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
     assert_eq!(n, raw.len() - 8, "{name}: byte count");
-    raw[8..].chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+    raw[8..]
+        .chunks(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
 }
 
 #[test]
@@ -46,7 +53,11 @@ fn vtu_series_of_half_disc() {
     assert_eq!(steps.len(), 6, "{collection}");
     for (k, inc) in [2, 4, 5].iter().enumerate() {
         let t = mem.increments[inc - 1].t;
-        assert!(steps[2 * k].contains(&format!("timestep=\"{t:?}\"")), "{}", steps[2 * k]);
+        assert!(
+            steps[2 * k].contains(&format!("timestep=\"{t:?}\"")),
+            "{}",
+            steps[2 * k]
+        );
         assert!(steps[2 * k].contains(&format!("hd/hd_{inc:06}.vtu")));
         assert!(steps[2 * k + 1].contains(&format!("hd/hd_contact_{inc:06}.vtu")));
     }

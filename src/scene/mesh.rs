@@ -34,6 +34,29 @@ fn resolve(src: &SceneSource, file: &str) -> (String, Option<&'static [u8]>, Pat
     (path.display().to_string(), None, path)
 }
 
+/// Largest mesh file read (bytes): a regular file of at most this size, so that a scene
+/// naming a device or a huge file fails with a message instead of exhausting memory.
+const MAX_MESH_BYTES: u64 = 1 << 30;
+
+fn read_limited(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    if meta.len() > MAX_MESH_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!("{} bytes, more than the limit of {MAX_MESH_BYTES}", meta.len()),
+        ));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)?
+        .take(MAX_MESH_BYTES)
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
 /// Read and check the Gmsh file of a body.
 fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneError> {
     let wrap = |error: GmshError| SceneError::Mesh {
@@ -45,7 +68,7 @@ fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneEr
     let (label, shipped, path) = resolve(src, file);
     let bytes: Cow<[u8]> = match shipped {
         Some(b) => Cow::Borrowed(b),
-        None => Cow::Owned(std::fs::read(&path).map_err(|source| {
+        None => Cow::Owned(read_limited(&path).map_err(|source| {
             let shipped: Vec<&str> = builtin::FILES.iter().map(|f| f.0).collect();
             wrap(GmshError::Read {
                 file: label.clone(),

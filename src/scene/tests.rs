@@ -137,3 +137,11 @@ fn gmsh_errors_name_the_file_the_group_and_the_fix() {
         "{not_msh}"
     );
 }
+
+#[test]
+fn gmsh_file_must_be_a_regular_file() {
+    for file in ["/dev/zero", "/tmp"] {
+        let e = gmsh_scene(file, "").unwrap_err().to_string();
+        assert!(e.contains(file) && e.contains("cannot read"), "{e}");
+    }
+}
