@@ -141,7 +141,7 @@ impl Observer for VtuSink {
     }
 
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
-        if rec.increment % self.every == 0 {
+        if rec.increment.is_multiple_of(self.every) {
             self.pending = None;
             self.write(view.model, rec.increment, rec.t, view.u, view.contact)
                 .map_err(|e| self.err(e))

@@ -1,7 +1,7 @@
 //! Resolve a checked scene into a [`Model`]: mesh generation, node selections, constraints,
 //! rigid geometry and contact pairs, with errors that point at the offending name.
 
-use super::mesh::body_mesh;
+use super::mesh::{body_mesh, MeshFile};
 use super::types::*;
 use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
@@ -16,7 +16,7 @@ use crate::settings::SolverSettings;
 struct Ctx<'a> {
     src: &'a SceneSource,
     /// Per body: its Gmsh file and the physical curves that are not faces (for errors).
-    mesh_files: Vec<Option<(String, Vec<(String, usize)>)>>,
+    mesh_files: Vec<Option<MeshFile>>,
 }
 
 impl Ctx<'_> {

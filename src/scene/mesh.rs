@@ -9,6 +9,10 @@ use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+/// A body's Gmsh file as resolved, and its physical curves that are not faces (name, number
+/// of lines off the boundary).
+pub(super) type MeshFile = (String, Vec<(String, usize)>);
+
 /// Nodes, counter-clockwise quadrilaterals, named node sets and faces of one body (local
 /// node numbers), and the mesh file it came from.
 pub(super) struct BodyMesh {
@@ -17,7 +21,7 @@ pub(super) struct BodyMesh {
     pub node_sets: BTreeMap<String, Vec<usize>>,
     pub faces: BTreeMap<String, Vec<[usize; 2]>>,
     /// The Gmsh file (as resolved), with the physical curves that are not faces.
-    pub file: Option<(String, Vec<(String, usize)>)>,
+    pub file: Option<MeshFile>,
 }
 
 /// Where a mesh file named in a scene is: beside the scene file, or (built-in scenes) among
@@ -63,7 +67,7 @@ fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneEr
         origin: src.origin.clone(),
         location: locate(&src.text, file),
         body: b.name.clone(),
-        error,
+        error: Box::new(error),
     };
     let (label, shipped, path) = resolve(src, file);
     let bytes: Cow<[u8]> = match shipped {

@@ -41,7 +41,7 @@ pub enum SceneError {
         origin: String,
         location: String,
         body: String,
-        error: crate::model::gmsh::GmshError,
+        error: Box<crate::model::gmsh::GmshError>,
     },
     #[error("{origin}{location}: {message}\n  hint: {hint}")]
     Invalid {
