@@ -113,3 +113,43 @@ fn binary_msh_gives_the_same_run() {
         binary.force
     );
 }
+
+/// A Gmsh physical curve as a master face: a rigid point pressed into the flat top
+/// (physical curve "top", listed right to left in the .geo and oriented by the reader) is
+/// pushed back along the outward normal ≈ (0, 1) of the face, i.e. out of the body (with the
+/// face reversed the point would be "inside" at once and the normal −y).
+#[test]
+fn gmsh_face_normals_point_out_of_the_body() {
+    let text = format!(
+        r#"name = "punch-on-top"
+[[body]]
+name = "disc"
+material = {{ model = "neo-hookean", young = 1.0e3, poisson = 0.3 }}
+mesh = {{ kind = "gmsh", file = "{}/scenes/half-disc.msh" }}
+[[fix]]
+body = "disc"
+nodes = "arc"
+components = ["x", "y"]
+[[rigid]]
+name = "P"
+point = [0.013, 1.0005]
+move = {{ y = -0.003 }}
+[[contact]]
+name = "punch"
+slave = {{ rigid = "P" }}
+master = {{ body = "disc", face = "top" }}
+eps_n = 1.0e4
+[stepping]
+increments = 2
+"#,
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let m = common::scene_text(&text);
+    let (_, mem) = common::solve_ok(&m);
+    let p = &mem.contact.last().unwrap()[0];
+    println!("punch: gap {:.3e}, N = {:.4}, normal {:?}", p.gap, p.normal_force, p.normal);
+    assert!(p.normal_force > 0.0, "the point must be in contact: {p:?}");
+    assert!(p.gap < 0.0);
+    // the face tilts a little under the point (current configuration): about (0, 1), not (0, −1)
+    assert!(p.normal[1] > 0.99, "normal {:?}", p.normal);
+}
