@@ -153,3 +153,17 @@ increments = 2
     // the face tilts a little under the point (current configuration): about (0, 1), not (0, −1)
     assert!(p.normal[1] > 0.99, "normal {:?}", p.normal);
 }
+
+/// Clockwise quadrilaterals from Gmsh: `tests/data/half-disc-cw.msh` is the coarse mesh of
+/// `scenes/half-disc.geo` with its curve loop reversed (`Curve Loop(1) = {-3, -2, -1};`,
+/// `gmsh -2 -format msh41 -clscale 2`): Gmsh then numbers every quadrilateral clockwise.
+/// The reader renumbers all of them, and the run equals the counter-clockwise file's.
+#[test]
+fn clockwise_gmsh_mesh_is_renumbered() {
+    let path = format!("{}/tests/data/half-disc-cw.msh", env!("CARGO_MANIFEST_DIR"));
+    let mesh = contrail::model::gmsh::read_gmsh(&path, &std::fs::read(&path).unwrap()).unwrap();
+    assert_eq!(mesh.reoriented, mesh.quads.len(), "every quadrilateral of the file is clockwise");
+    let cw = run(Some("half-disc-cw.msh"));
+    let ccw = run(Some("half-disc-coarse.msh"));
+    assert!((cw.force - ccw.force).abs() < 1e-9 * ccw.force, "{} against {}", cw.force, ccw.force);
+}
