@@ -2,7 +2,7 @@
 // scene `half-disc` (scenes/half-disc.toml). Linear quadrilaterals, refined near the
 // contact at (0, 0).
 //
-// Regenerate the shipped mesh (Gmsh ≥ 4.11; `pip install gmsh` provides the command):
+// Regenerate the shipped mesh (made with Gmsh 4.15.2; `pip install gmsh` provides the command):
 //   gmsh scenes/half-disc.geo -2 -format msh41 -o scenes/half-disc.msh
 // (add `-bin` for the binary MSH 4.1 variant; contrail reads both).
 R = 1.0;
