@@ -1,3 +1,6 @@
+# Render one increment of a `contrail run ... --out RUN.pvd` series to a PNG with VTK
+# (pip install vtk; off-screen): deformed mesh coloured by von Mises, contact points, the
+# plane y = 0. Usage: python docs/render-vtu.py RUN/RUN_000005.vtu RUN/RUN_contact_000005.vtu out.png
 import sys, vtk
 rd = vtk.vtkXMLUnstructuredGridReader(); rd.SetFileName(sys.argv[1]); rd.Update()
 g = rd.GetOutput()
