@@ -147,7 +147,10 @@ increments = 2
     let m = common::scene_text(&text);
     let (_, mem) = common::solve_ok(&m);
     let p = &mem.contact.last().unwrap()[0];
-    println!("punch: gap {:.3e}, N = {:.4}, normal {:?}", p.gap, p.normal_force, p.normal);
+    println!(
+        "punch: gap {:.3e}, N = {:.4}, normal {:?}",
+        p.gap, p.normal_force, p.normal
+    );
     assert!(p.normal_force > 0.0, "the point must be in contact: {p:?}");
     assert!(p.gap < 0.0);
     // the face tilts a little under the point (current configuration): about (0, 1), not (0, −1)
@@ -162,8 +165,17 @@ increments = 2
 fn clockwise_gmsh_mesh_is_renumbered() {
     let path = format!("{}/tests/data/half-disc-cw.msh", env!("CARGO_MANIFEST_DIR"));
     let mesh = contrail::model::gmsh::read_gmsh(&path, &std::fs::read(&path).unwrap()).unwrap();
-    assert_eq!(mesh.reoriented, mesh.quads.len(), "every quadrilateral of the file is clockwise");
+    assert_eq!(
+        mesh.reoriented,
+        mesh.quads.len(),
+        "every quadrilateral of the file is clockwise"
+    );
     let cw = run(Some("half-disc-cw.msh"));
     let ccw = run(Some("half-disc-coarse.msh"));
-    assert!((cw.force - ccw.force).abs() < 1e-9 * ccw.force, "{} against {}", cw.force, ccw.force);
+    assert!(
+        (cw.force - ccw.force).abs() < 1e-9 * ccw.force,
+        "{} against {}",
+        cw.force,
+        ccw.force
+    );
 }
