@@ -3,17 +3,20 @@
 #  - Python's `mcap` reader + `jsonschema` read and validate every message of recordings of a
 #    completed, a failed and a thinned run (.ci/interop.py);
 #  - the rerun CLI of rerun-sdk==0.36.3 (the crate's version) verifies the .rrd of a run and
-#    of a replay (`rerun rrd verify`).
+#    of a replay (`rerun rrd verify`);
+#  - meshio reads the ParaView series (.pvd + .vtu) of `run --out X.pvd` and of
+#    `export X.mcap --vtu DIR` and checks names, shapes and values against the run's MCAP and
+#    CSV (.ci/vtu_check.py).
 # The virtual environment is created on first use and reused (CONTRAIL_INTEROP_VENV).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/contrail-target}"
 VENV="${CONTRAIL_INTEROP_VENV:-$HOME/.cache/contrail-interop-venv}"
-PY_PACKAGES=("mcap==1.6.0" "jsonschema==4.26.0" "rerun-sdk==0.36.3")
+PY_PACKAGES=("mcap==1.6.0" "jsonschema==4.26.0" "rerun-sdk==0.36.3" "meshio==5.3.5")
 
 echo "== interop: python environment ($VENV)"
-if ! "$VENV/bin/python" -c "import mcap, jsonschema" 2>/dev/null \
+if ! "$VENV/bin/python" -c "import mcap, jsonschema, meshio" 2>/dev/null \
     || ! "$VENV/bin/rerun" --version 2>/dev/null | grep -q " 0\.36\.3 "; then
     python3 -m venv "$VENV"
     "$VENV/bin/pip" install --quiet --disable-pip-version-check "${PY_PACKAGES[@]}"
@@ -45,9 +48,18 @@ if [ "$rc" -ne 1 ]; then
     echo "a run meant to fail exited with $rc"; cat "$TMP/failed.log"; exit 1
 fi
 "$BIN" replay "$TMP/strip.mcap" --rerun-save "$TMP/strip-replay.rrd"
+# the Gmsh-meshed built-in scene, with its ParaView series (every increment, and every 2nd)
+record half-disc --quiet --out "$TMP/hd.pvd" --out "$TMP/hd.mcap" --out "$TMP/hd.csv"
+record half-disc --quiet --vtu-every 2 --out "$TMP/hd2.pvd" --out "$TMP/hd2.csv"
+"$BIN" export "$TMP/hd.mcap" --vtu "$TMP/exported" >/dev/null
 
 echo "== interop: mcap + jsonschema"
-"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap"
+"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap"
+
+echo "== interop: meshio reads the VTU series"
+"$VENV/bin/python" .ci/vtu_check.py "$TMP/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"
+"$VENV/bin/python" .ci/vtu_check.py "$TMP/hd2.pvd" "$TMP/hd.mcap" "$TMP/hd2.csv" --every 2
+"$VENV/bin/python" .ci/vtu_check.py "$TMP/exported/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"
 
 echo "== interop: rerun rrd verify"
 for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd"; do

@@ -3,6 +3,7 @@
 mod chart;
 mod check;
 mod diff;
+mod export;
 mod inspect;
 pub(crate) mod out;
 mod plot;
@@ -46,6 +47,8 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Compare two MCAP recordings of one scene (exit 0 within --tol, 1 beyond, 2 bad input).
     Diff(diff::DiffArgs),
+    /// Write a recording's fields as a ParaView VTU series (`export FILE.mcap --vtu DIR`).
+    Export(export::ExportArgs),
     /// Salvage the complete chunks of an unfinished or damaged recording (a killed run's
     /// `.NAME.PID.N.part` file) into a finalised one that ends with a "recovered" outcome.
     Recover(recover::RecoverArgs),
@@ -115,6 +118,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Replay(a) => replay::replay(a),
         Command::Inspect(a) => inspect::inspect(a),
         Command::Diff(a) => diff::diff(a),
+        Command::Export(a) => export::export(a),
         Command::Recover(a) => recover::recover(a),
         Command::Sweep(a) => sweep::sweep(a),
         Command::Chart(a) => chart::chart(a),

@@ -10,6 +10,7 @@ use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
 use contrail::record::rerun_sink::{self, RerunSink};
+use contrail::record::vtu_sink::VtuSink;
 use contrail::record::{Fanout, Observer};
 use contrail::solver::{run as solve, SolveError};
 use std::io::{BufWriter, IsTerminal};
@@ -20,14 +21,19 @@ use std::process::ExitCode;
 pub struct RunArgs {
     /// Built-in scene name or path to a scene TOML file.
     pub scene: String,
-    /// Write the run to FILE: `.csv` (load–displacement history), `.jsonl` (every record) or
-    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks). Repeatable:
+    /// Write the run to FILE: `.csv` (load–displacement history), `.jsonl` (every record),
+    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks) or `.pvd`
+    /// (ParaView: a VTU series of the mesh with displacement, stress and strain, and of the
+    /// contact points, in the directory `FILE` without `.pvd`). Repeatable:
     /// `--out run.mcap --out run.csv`.
     #[arg(long, value_name = "FILE")]
     pub out: Vec<PathBuf>,
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
+    /// In a `.pvd` series, write every N-th increment (and the last).
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    pub vtu_every: u64,
     #[command(flatten)]
     pub rerun: super::replay::RerunArgs,
     /// Override a scene value, e.g. --set contact.mu=0.1 (repeatable).
@@ -47,7 +53,7 @@ fn open(path: &Path) -> anyhow::Result<BufWriter<std::fs::File>> {
     Ok(BufWriter::new(f))
 }
 
-fn sink(path: &Path, positions_every: u64) -> anyhow::Result<Box<dyn Observer>> {
+fn sink(path: &Path, positions_every: u64, vtu_every: u64) -> anyhow::Result<Box<dyn Observer>> {
     let name = path.display().to_string();
     Ok(match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => Box::new(CsvSink::new(open(path)?, &name)),
@@ -67,7 +73,11 @@ fn sink(path: &Path, positions_every: u64) -> anyhow::Result<Box<dyn Observer>> 
             // serialised and written on a thread of its own (`record::background`)
             Box::new(Background::new(Box::new(mcap), &name))
         }
-        _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl or .mcap")).into()),
+        Some("pvd") => Box::new(
+            VtuSink::create(path, vtu_every as usize)
+                .map_err(|e| BadInput(format!("{name}: cannot create the VTU series: {e}")))?,
+        ),
+        _ => return Err(BadInput(format!("{name}: unknown output kind; use .csv, .jsonl, .mcap or .pvd")).into()),
     })
 }
 
@@ -84,7 +94,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     let stop = super::signal::stop_flag();
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
     for path in &a.out {
-        sinks.push(sink(path, a.positions_every)?);
+        sinks.push(sink(path, a.positions_every, a.vtu_every)?);
     }
     let targets = a.rerun.targets();
     if targets.any() {

@@ -90,6 +90,22 @@ impl Material {
         }
     }
 
+    /// Out-of-plane second Piola–Kirchhoff stress `S33` of plane strain (`E33 = 0`) for the
+    /// in-plane strain `e` (for output: the in-plane equations do not need it).
+    pub fn out_of_plane_stress(&self, e: &Vector3<f64>) -> Result<f64, MaterialError> {
+        match *self {
+            Material::SaintVenantKirchhoff { lambda, .. } => Ok(lambda * (e[0] + e[1])),
+            Material::NeoHookean { lambda, .. } => {
+                // S33 = μ (1 − C33⁻¹) + λ ln J C33⁻¹ with C33 = 1
+                let det_c = (2.0 * e[0] + 1.0) * (2.0 * e[1] + 1.0) - e[2] * e[2];
+                if det_c <= 0.0 || !det_c.is_finite() {
+                    return Err(MaterialError::InvertedJacobian(det_c));
+                }
+                Ok(lambda * 0.5 * det_c.ln())
+            }
+        }
+    }
+
     /// Strain energy density `W(E)` (used by tests and by energy diagnostics).
     pub fn energy(&self, e: &Vector3<f64>) -> Result<f64, MaterialError> {
         match *self {

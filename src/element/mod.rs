@@ -1,4 +1,5 @@
 //! Continuum element kernels: local data in, local residual and tangent out.
 
+pub mod fields;
 pub mod material;
 pub mod quad;

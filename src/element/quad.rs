@@ -359,6 +359,29 @@ pub fn quad_centre_stress(
     Ok((e, s))
 }
 
+/// Compatible deformation gradient `F = I + Σ u_I ⊗ ∇_X N_I` at the element centre
+/// (for output; fails like [`QuadGeometry::new`] on a non-positive reference Jacobian).
+pub fn quad_centre_deformation_gradient(x: &[[f64; 2]; 4], u: &[[f64; 2]; 4]) -> Result<Matrix2<f64>, ElementError> {
+    let d = dn_dxi(0.0, 0.0);
+    let j = jacobian(x, &d);
+    let det = j.determinant();
+    let inv = j
+        .try_inverse()
+        .filter(|_| det > 0.0)
+        .ok_or(ElementError::BadGeometry(det))?;
+    let mut f = Matrix2::identity();
+    for i in 0..4 {
+        // ∇_X N_I = J⁻ᵀ ∂N_I/∂ξ
+        let g = inv.transpose() * nalgebra::Vector2::new(d[0][i], d[1][i]);
+        for a in 0..2 {
+            for b in 0..2 {
+                f[(a, b)] += u[i][a] * g[b];
+            }
+        }
+    }
+    Ok(f)
+}
+
 #[cfg(test)]
 #[path = "quad_tests.rs"]
 mod tests;

@@ -2,6 +2,7 @@
 //! pairs, with everything resolved to indices. The model is immutable during a run.
 
 pub mod contact;
+pub mod gmsh;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;

@@ -15,6 +15,8 @@ pub mod rerun_sink;
 mod rerun_style;
 mod rerun_view;
 pub mod schemas;
+pub mod vtu;
+pub mod vtu_sink;
 
 pub use failure::{ChangingPoint, FailureKind, PointDecision};
 pub use observer::{Fanout, Memory, Observer, ObserverError};

@@ -1,10 +1,10 @@
 //! Resolve a checked scene into a [`Model`]: mesh generation, node selections, constraints,
 //! rigid geometry and contact pairs, with errors that point at the offending name.
 
+use super::mesh::{body_mesh, MeshFile};
 use super::types::*;
 use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
-use crate::model::mesh::RectMesh;
 use crate::model::ContactLaw;
 use crate::model::{
     chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, OwnedVertex, Piece, Prescribed,
@@ -15,6 +15,8 @@ use crate::settings::SolverSettings;
 
 struct Ctx<'a> {
     src: &'a SceneSource,
+    /// Per body: its Gmsh file and the physical curves that are not faces (for errors).
+    mesh_files: Vec<Option<MeshFile>>,
 }
 
 impl Ctx<'_> {
@@ -49,11 +51,21 @@ fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<V
     let nodes = match sel {
         NodeSelection::Named(name) => b.node_sets.get(name).cloned().ok_or_else(|| {
             let known: Vec<&str> = b.node_sets.keys().map(|s| s.as_str()).collect();
-            cx.err(
-                name,
-                format!("body `{}` has no node set `{name}`", b.name),
-                &format!("known sets: {}", known.join(", ")),
-            )
+            match &cx.mesh_files[body] {
+                Some((file, _)) => cx.err(
+                    name,
+                    format!("body `{}`: the mesh {file} has no physical group `{name}`", b.name),
+                    &format!(
+                        "its node sets are: {}; add `Physical Curve(\"{name}\") = {{…}};` (or Point/Surface) to the .geo and mesh it again",
+                        known.join(", ")
+                    ),
+                ),
+                None => cx.err(
+                    name,
+                    format!("body `{}` has no node set `{name}`", b.name),
+                    &format!("known sets: {}", known.join(", ")),
+                ),
+            }
         })?,
         NodeSelection::Where(w) => (b.first_node..b.first_node + b.node_count)
             .filter(|&n| {
@@ -141,7 +153,10 @@ pub fn build(src: &SceneSource, s: &SceneFile) -> Result<Problem, SceneError> {
 /// Build the model of a checked scene.
 pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError> {
     super::validate::validate(src, s)?;
-    let cx = Ctx { src };
+    let mut cx = Ctx {
+        src,
+        mesh_files: Vec::new(),
+    };
     let end = s.stepping.end;
     if s.stepping.increments == 0 || end <= 0.0 {
         return Err(cx.err(
@@ -162,25 +177,13 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         contacts: Vec::new(),
         monitor: None,
     };
+    let mut mesh_files = Vec::new();
     for b in &s.bodies {
         if m.bodies.iter().any(|o| o.name == b.name) {
             return Err(cx.err(
                 &b.name,
                 format!("two bodies are named `{}`", b.name),
                 "give each body its own name",
-            ));
-        }
-        let MeshSpec::Rectangle {
-            origin,
-            size,
-            elements,
-            grading,
-        } = b.mesh.clone();
-        if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
-            return Err(cx.err(
-                &b.name,
-                format!("body `{}`: mesh needs positive size and ≥ 1 element each way", b.name),
-                "fix [body.mesh]",
             ));
         }
         let mat = &b.material;
@@ -196,17 +199,19 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
             MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
             MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
         };
-        let mesh = RectMesh::new(origin, size, elements, grading);
-        if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {
+        let mesh = body_mesh(src, b)?;
+        let dofs = 2 * (m.nodes.len() + mesh.nodes.len());
+        if dofs > s.limits.max_dofs {
             return Err(cx.err(
                 &b.name,
                 format!(
-                    "body `{}`: the mesh has a node at {x:?} (its coordinates overflow)",
-                    b.name
+                    "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
+                    b.name, s.limits.max_dofs
                 ),
-                "give a smaller mesh size or grading",
+                "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
             ));
         }
+        mesh_files.push(mesh.file.clone());
         let off = m.nodes.len();
         let bi = m.bodies.len();
         m.nodes.extend(mesh.nodes.iter().copied());
@@ -232,6 +237,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
                 .collect(),
         });
     }
+    cx.mesh_files = mesh_files;
     let mut fixed = vec![false; m.dof_count()];
     for f in &s.fixes {
         let bi = body_index(&cx, &m, &f.body)?;
@@ -336,11 +342,29 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         (Some(b), Some(face), None) => {
             let bi = body_index(cx, m, b)?;
             let segments = m.bodies[bi].faces.get(face).cloned().ok_or_else(|| {
-                cx.err(
-                    face,
-                    format!("body `{b}` has no face `{face}`"),
-                    "faces are bottom, right, top, left",
-                )
+                let known: Vec<&str> = m.bodies[bi].faces.keys().map(|s| s.as_str()).collect();
+                match &cx.mesh_files[bi] {
+                    Some((file, interior)) => match interior.iter().find(|c| c.0 == *face) {
+                        Some((_, n)) => cx.err(
+                            face,
+                            format!("body `{b}`: physical curve `{face}` of {file} is not a face: {n} of its lines are not on the boundary"),
+                            &format!("a master face must lie on the body's boundary; its faces are: {}", known.join(", ")),
+                        ),
+                        None => cx.err(
+                            face,
+                            format!("body `{b}`: the mesh {file} has no physical curve `{face}` on its boundary"),
+                            &format!(
+                                "its faces are: {}; add `Physical Curve(\"{face}\") = {{…}};` to the .geo and mesh it again",
+                                known.join(", ")
+                            ),
+                        ),
+                    },
+                    None => cx.err(
+                        face,
+                        format!("body `{b}` has no face `{face}`"),
+                        &format!("faces are {}", known.join(", ")),
+                    ),
+                }
             })?;
             let (prev, next) = chain_neighbours(&segments);
             Master::Face {

@@ -27,8 +27,21 @@ pub const BUILTINS: &[Builtin] = &[
         name: "crossing",
         text: include_str!("../../scenes/crossing.toml"),
     },
+    Builtin {
+        name: "half-disc",
+        text: include_str!("../../scenes/half-disc.toml"),
+    },
 ];
 
+/// Files the built-in scenes refer to (meshes), by the name they use.
+pub const FILES: &[(&str, &[u8])] = &[("half-disc.msh", include_bytes!("../../scenes/half-disc.msh"))];
+
+/// A file shipped with the built-in scenes (`mesh = { kind = "gmsh", file = NAME }`).
+pub fn file(name: &str) -> Option<&'static [u8]> {
+    FILES.iter().find(|f| f.0 == name).map(|f| f.1)
+}
+
+/// The built-in scene called `name`.
 pub fn find(name: &str) -> Option<&'static Builtin> {
     BUILTINS.iter().find(|b| b.name == name)
 }

@@ -5,6 +5,7 @@
 
 mod build;
 pub mod builtin;
+mod mesh;
 mod overrides;
 pub mod types;
 pub mod validate;
@@ -33,6 +34,14 @@ pub enum SceneError {
         origin: String,
         set: String,
         message: String,
+    },
+    /// A body's mesh file could not be read or used (the error names the file and the fix).
+    #[error("{origin}{location}: body `{body}`: {error}")]
+    Mesh {
+        origin: String,
+        location: String,
+        body: String,
+        error: Box<crate::model::gmsh::GmshError>,
     },
     #[error("{origin}{location}: {message}\n  hint: {hint}")]
     Invalid {

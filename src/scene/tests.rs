@@ -78,3 +78,70 @@ fn scene_schema_file_matches_the_types() {
         "schemas/scene.schema.json is stale: run CONTRAIL_BLESS=1 cargo test --lib scene_schema"
     );
 }
+
+/// A scene beside `scenes/half-disc.msh` with the given extra text.
+fn gmsh_scene(file: &str, extra: &str) -> Result<crate::model::Model, SceneError> {
+    let text = format!(
+        "name = \"g\"\n[[body]]\nname = \"disc\"\nmaterial = {{ model = \"neo-hookean\", young = 1.0, poisson = 0.3 }}\nmesh = {{ kind = \"gmsh\", file = \"{file}\" }}\n{extra}"
+    );
+    let src = SceneSource {
+        origin: concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/g.toml").into(),
+        text,
+    };
+    let scene = parse(&src, &[])?;
+    build_model(&src, &scene)
+}
+
+#[test]
+fn gmsh_mesh_resolves_beside_the_scene_and_names_its_groups() {
+    let m = gmsh_scene("half-disc.msh", "").unwrap();
+    let b = &m.bodies[0];
+    for set in ["arc", "top", "tip", "disc", "all"] {
+        assert!(b.node_sets.contains_key(set), "{set}");
+    }
+    assert_eq!(b.faces.keys().collect::<Vec<_>>(), ["arc", "top"]);
+    assert_eq!(b.node_sets["tip"].len(), 1);
+    // the arc face runs counter-clockwise: outward normals point away from the centre (0, 1)
+    for &[a, c] in &b.faces["arc"] {
+        let (pa, pc) = (m.nodes[a], m.nodes[c]);
+        let n = [pc[1] - pa[1], -(pc[0] - pa[0])];
+        let mid = [0.5 * (pa[0] + pc[0]), 0.5 * (pa[1] + pc[1]) - 1.0];
+        assert!(n[0] * mid[0] + n[1] * mid[1] > 0.0, "segment {a}→{c} points inward");
+    }
+}
+
+#[test]
+fn gmsh_errors_name_the_file_the_group_and_the_fix() {
+    let missing = gmsh_scene("nope.msh", "").unwrap_err().to_string();
+    assert!(
+        missing.contains("nope.msh") && missing.contains("cannot read") && missing.contains("relative to the scene"),
+        "{missing}"
+    );
+    let fix = "[[fix]]\nbody = \"disc\"\nnodes = \"bottom\"\ncomponents = [\"x\"]\n";
+    let group = gmsh_scene("half-disc.msh", fix).unwrap_err().to_string();
+    assert!(
+        group.contains("half-disc.msh")
+            && group.contains("no physical group `bottom`")
+            && group.contains("Physical Curve"),
+        "{group}"
+    );
+    let contact = "[[rigid]]\nname = \"p\"\npoint = [0.0, -1.0]\n[[contact]]\nname = \"c\"\nslave = { rigid = \"p\" }\nmaster = { body = \"disc\", face = \"disc\" }\neps_n = 1.0\n";
+    let face = gmsh_scene("half-disc.msh", contact).unwrap_err().to_string();
+    assert!(
+        face.contains("no physical curve `disc`") && face.contains("arc, top"),
+        "{face}"
+    );
+    let not_msh = gmsh_scene("half-disc.toml", "").unwrap_err().to_string();
+    assert!(
+        not_msh.contains("half-disc.toml") && not_msh.contains("$MeshFormat"),
+        "{not_msh}"
+    );
+}
+
+#[test]
+fn gmsh_file_must_be_a_regular_file() {
+    for file in ["/dev/zero", "/tmp"] {
+        let e = gmsh_scene(file, "").unwrap_err().to_string();
+        assert!(e.contains(file) && e.contains("cannot read"), "{e}");
+    }
+}

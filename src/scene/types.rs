@@ -88,6 +88,13 @@ pub enum MeshSpec {
         #[serde(default = "unit_grading")]
         grading: [f64; 2],
     },
+    /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
+    /// are the body's node sets, its physical curves on the boundary its faces.
+    Gmsh {
+        /// Path of the `.msh` file, relative to the scene file (for a built-in scene: a
+        /// file shipped with it, e.g. `half-disc.msh`).
+        file: String,
+    },
 }
 
 fn unit_grading() -> [f64; 2] {

@@ -1,0 +1,32 @@
+# Render one increment of a `contrail run ... --out RUN.pvd` series to a PNG with VTK
+# (pip install vtk; off-screen): deformed mesh coloured by von Mises, contact points, the
+# plane y = 0. Usage: python docs/render-vtu.py RUN/RUN_000005.vtu RUN/RUN_contact_000005.vtu out.png
+import sys, vtk
+rd = vtk.vtkXMLUnstructuredGridReader(); rd.SetFileName(sys.argv[1]); rd.Update()
+g = rd.GetOutput()
+g.GetPointData().SetActiveVectors("displacement")
+warp = vtk.vtkWarpVector(); warp.SetInputData(g); warp.SetScaleFactor(1.0); warp.Update()
+c2p = vtk.vtkCellDataToPointData(); c2p.SetInputConnection(warp.GetOutputPort()); c2p.Update()
+m = vtk.vtkDataSetMapper(); m.SetInputData(warp.GetOutput()); m.SetScalarModeToUseCellFieldData(); m.SelectColorArray("von_mises")
+rng = g.GetCellData().GetArray("von_mises").GetRange()
+m.SetScalarRange(0, rng[1])
+lut = vtk.vtkLookupTable(); lut.SetHueRange(0.667, 0.0); lut.Build(); m.SetLookupTable(lut)
+a = vtk.vtkActor(); a.SetMapper(m); a.GetProperty().EdgeVisibilityOn(); a.GetProperty().SetEdgeColor(0.2,0.2,0.2); a.GetProperty().SetLineWidth(0.5)
+ren = vtk.vtkRenderer(); ren.AddActor(a); ren.SetBackground(1,1,1)
+bar = vtk.vtkScalarBarActor(); bar.SetLookupTable(lut); bar.SetTitle("von Mises"); bar.SetNumberOfLabels(5)
+bar.GetTitleTextProperty().SetColor(0,0,0); bar.GetLabelTextProperty().SetColor(0,0,0); bar.SetWidth(0.1); bar.SetHeight(0.6)
+ren.AddViewProp(bar)
+# contact points
+rc = vtk.vtkXMLUnstructuredGridReader(); rc.SetFileName(sys.argv[2]); rc.Update()
+cm = vtk.vtkDataSetMapper(); cm.SetInputData(rc.GetOutput()); cm.ScalarVisibilityOff()
+ca = vtk.vtkActor(); ca.SetMapper(cm); ca.GetProperty().SetRepresentationToPoints(); ca.GetProperty().SetPointSize(4); ca.GetProperty().SetColor(1,0.5,0)
+ren.AddActor(ca)
+line = vtk.vtkLineSource(); line.SetPoint1(-1.3,0,0); line.SetPoint2(1.3,0,0)
+lm = vtk.vtkPolyDataMapper(); lm.SetInputConnection(line.GetOutputPort()); la = vtk.vtkActor(); la.SetMapper(lm); la.GetProperty().SetColor(0.4,0,0.6); la.GetProperty().SetLineWidth(3)
+ren.AddActor(la)
+w = vtk.vtkRenderWindow(); w.SetOffScreenRendering(1); w.AddRenderer(ren); w.SetSize(1000, 560)
+ren.ResetCamera(); ren.GetActiveCamera().Zoom(1.5)
+w.Render()
+wi = vtk.vtkWindowToImageFilter(); wi.SetInput(w); wi.Update()
+pw = vtk.vtkPNGWriter(); pw.SetFileName(sys.argv[3]); pw.SetInputConnection(wi.GetOutputPort()); pw.Write()
+print("ok")

@@ -1,0 +1,161 @@
+//! ParaView output: a `.pvd` collection and, for every N-th converged increment (and the
+//! last), a `.vtu` of the mesh with its fields and one of the contact points (format in
+//! [`super::vtu`]). `RUN.pvd` refers to `RUN/RUN_000012.vtu` and `RUN/RUN_contact_000012.vtu`
+//! (increment 12). The `.pvd` is written when the run ends — also after a failure or an
+//! interruption — under a temporary name and renamed into place.
+
+use super::atomic_file::AtomicFile;
+use super::vtu::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
+use super::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
+use crate::element::fields::{centre_fields, CentreFields};
+use crate::model::Model;
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// Centre fields of every element of a model for the displacement `u` (`None` where the
+/// element cannot be evaluated, e.g. inverted).
+pub fn model_fields(model: &Model, u: &[f64]) -> Vec<Option<CentreFields>> {
+    model
+        .elements
+        .iter()
+        .map(|e| {
+            let body = &model.bodies[e.body];
+            let x = e.nodes.map(|n| model.nodes[n]);
+            let ue = e.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+            centre_fields(body.kind, &body.material, &x, &ue).ok()
+        })
+        .collect()
+}
+
+/// The mesh dataset of a model at displacement `u`, with its element fields.
+pub fn model_piece(model: &Model, u: &[f64]) -> Piece {
+    let quads: Vec<[usize; 4]> = model.elements.iter().map(|e| e.nodes).collect();
+    let body: Vec<usize> = model.elements.iter().map(|e| e.body).collect();
+    let fields = model_fields(model, u);
+    mesh_piece(&model.nodes, &quads, &body, u, Some(&fields))
+}
+
+/// A series of `.vtu` files and the `.pvd` that collects them.
+pub struct VtuSeries {
+    pvd: PathBuf,
+    dir: PathBuf,
+    stem: String,
+    entries: Vec<PvdEntry>,
+}
+
+impl VtuSeries {
+    /// A series for `path` (`RUN.pvd`): creates the directory `RUN/` beside it.
+    pub fn create(path: &Path) -> io::Result<Self> {
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .filter(|s| !s.is_empty())
+            .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "the path has no file name"))?;
+        let dir = path.with_file_name(&stem);
+        std::fs::create_dir_all(&dir)?;
+        Ok(VtuSeries {
+            pvd: path.to_path_buf(),
+            dir,
+            stem,
+            entries: Vec::new(),
+        })
+    }
+
+    /// Write the datasets of one increment (the contact points only if given).
+    pub fn step(&mut self, increment: usize, t: f64, mesh: &Piece, contact: Option<&Piece>) -> io::Result<()> {
+        let parts = [("", Some(mesh)), ("contact_", contact)];
+        for (part, (kind, piece)) in parts.into_iter().enumerate() {
+            let Some(piece) = piece else { continue };
+            let name = format!("{}_{kind}{increment:06}.vtu", self.stem);
+            let mut w = BufWriter::new(std::fs::File::create(self.dir.join(&name))?);
+            write_vtu(&mut w, piece)?;
+            w.flush()?;
+            self.entries.push(PvdEntry {
+                t,
+                part,
+                file: format!("{}/{name}", self.stem),
+            });
+        }
+        Ok(())
+    }
+
+    /// Write the `.pvd` collection of the steps written so far.
+    pub fn finish(&self) -> io::Result<()> {
+        let mut f = AtomicFile::create(&self.pvd)?;
+        write_pvd(&mut f, &self.entries)?;
+        f.commit()?;
+        Ok(())
+    }
+
+    /// Number of increments written.
+    pub fn steps(&self) -> usize {
+        self.entries.iter().filter(|e| e.part == 0).count()
+    }
+}
+
+/// The observer that writes a [`VtuSeries`] every `every`-th converged increment and the
+/// last one.
+pub struct VtuSink {
+    series: VtuSeries,
+    every: usize,
+    name: String,
+    /// The last converged increment if it has not been written yet.
+    pending: Option<(usize, f64, Vec<f64>, Vec<ContactPointRecord>)>,
+    model: Option<Model>,
+}
+
+impl VtuSink {
+    /// A sink writing `path` (`.pvd`) and the directory beside it; `every` ≥ 1.
+    pub fn create(path: &Path, every: usize) -> io::Result<Self> {
+        Ok(VtuSink {
+            series: VtuSeries::create(path)?,
+            every: every.max(1),
+            name: path.display().to_string(),
+            pending: None,
+            model: None,
+        })
+    }
+
+    fn err(&self, e: io::Error) -> ObserverError {
+        ObserverError::new(&self.name, e)
+    }
+
+    fn write(
+        &mut self,
+        model: &Model,
+        increment: usize,
+        t: f64,
+        u: &[f64],
+        contact: &[ContactPointRecord],
+    ) -> io::Result<()> {
+        let mesh = model_piece(model, u);
+        let contact = (!model.contacts.is_empty()).then(|| contact_piece(contact));
+        self.series.step(increment, t, &mesh, contact.as_ref())
+    }
+}
+
+impl Observer for VtuSink {
+    fn start(&mut self, model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
+        self.model = Some(model.clone());
+        Ok(())
+    }
+
+    fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+        if rec.increment.is_multiple_of(self.every) {
+            self.pending = None;
+            self.write(view.model, rec.increment, rec.t, view.u, view.contact)
+                .map_err(|e| self.err(e))
+        } else {
+            self.pending = Some((rec.increment, rec.t, view.u.to_vec(), view.contact.to_vec()));
+            Ok(())
+        }
+    }
+
+    fn finish(&mut self, _outcome: &Outcome) -> Result<(), ObserverError> {
+        if let (Some((increment, t, u, contact)), Some(model)) = (self.pending.take(), self.model.take()) {
+            self.write(&model, increment, t, &u, &contact)
+                .map_err(|e| self.err(e))?;
+        }
+        self.series.finish().map_err(|e| self.err(e))
+    }
+}

@@ -1,0 +1,139 @@
+//! The mesh of one body: generated (`rectangle`) or read from a Gmsh file (`gmsh`, resolved
+//! relative to the scene file, or among the files shipped with a built-in scene).
+
+use super::types::{BodySpec, MeshSpec};
+use super::{builtin, locate, SceneError, SceneSource};
+use crate::model::gmsh::{read_gmsh, GmshError};
+use crate::model::mesh::RectMesh;
+use std::borrow::Cow;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// A body's Gmsh file as resolved, and its physical curves that are not faces (name, number
+/// of lines off the boundary).
+pub(super) type MeshFile = (String, Vec<(String, usize)>);
+
+/// Nodes, counter-clockwise quadrilaterals, named node sets and faces of one body (local
+/// node numbers), and the mesh file it came from.
+pub(super) struct BodyMesh {
+    pub nodes: Vec<[f64; 2]>,
+    pub quads: Vec<[usize; 4]>,
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    pub faces: BTreeMap<String, Vec<[usize; 2]>>,
+    /// The Gmsh file (as resolved), with the physical curves that are not faces.
+    pub file: Option<MeshFile>,
+}
+
+/// Where a mesh file named in a scene is: beside the scene file, or (built-in scenes) among
+/// the shipped files first, then relative to the working directory.
+fn resolve(src: &SceneSource, file: &str) -> (String, Option<&'static [u8]>, PathBuf) {
+    if src.origin.starts_with("builtin:") {
+        if let Some(bytes) = builtin::file(file) {
+            return (format!("builtin:{file}"), Some(bytes), PathBuf::from(file));
+        }
+        return (file.to_string(), None, PathBuf::from(file));
+    }
+    let dir = Path::new(&src.origin).parent().unwrap_or(Path::new(""));
+    let path = dir.join(file);
+    (path.display().to_string(), None, path)
+}
+
+/// Largest mesh file read (bytes): a regular file of at most this size, so that a scene
+/// naming a device or a huge file fails with a message instead of exhausting memory.
+const MAX_MESH_BYTES: u64 = 1 << 30;
+
+fn read_limited(path: &Path) -> std::io::Result<Vec<u8>> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    if meta.len() > MAX_MESH_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!("{} bytes, more than the limit of {MAX_MESH_BYTES}", meta.len()),
+        ));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)?
+        .take(MAX_MESH_BYTES)
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// Read and check the Gmsh file of a body.
+fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneError> {
+    let wrap = |error: GmshError| SceneError::Mesh {
+        origin: src.origin.clone(),
+        location: locate(&src.text, file),
+        body: b.name.clone(),
+        error: Box::new(error),
+    };
+    let (label, shipped, path) = resolve(src, file);
+    let bytes: Cow<[u8]> = match shipped {
+        Some(b) => Cow::Borrowed(b),
+        None => Cow::Owned(read_limited(&path).map_err(|source| {
+            let shipped: Vec<&str> = builtin::FILES.iter().map(|f| f.0).collect();
+            wrap(GmshError::Read {
+                file: label.clone(),
+                source,
+                hint: format!(
+                    "`file` is relative to the scene file's directory; the meshes of the built-in scenes ({}) are in the repository's `scenes/` directory",
+                    shipped.join(", ")
+                ),
+            })
+        })?),
+    };
+    let m = read_gmsh(&label, &bytes).map_err(wrap)?;
+    Ok(BodyMesh {
+        nodes: m.nodes,
+        quads: m.quads,
+        node_sets: m.node_sets,
+        faces: m.faces,
+        file: Some((label, m.interior_curves)),
+    })
+}
+
+/// The mesh of a body.
+pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, SceneError> {
+    let invalid = |message: String, hint: &str| SceneError::Invalid {
+        origin: src.origin.clone(),
+        location: locate(&src.text, &b.name),
+        message,
+        hint: hint.to_string(),
+    };
+    let mesh = match &b.mesh {
+        MeshSpec::Rectangle {
+            origin,
+            size,
+            elements,
+            grading,
+        } => {
+            if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
+                return Err(invalid(
+                    format!("body `{}`: mesh needs positive size and ≥ 1 element each way", b.name),
+                    "fix [body.mesh]",
+                ));
+            }
+            let m = RectMesh::new(*origin, *size, *elements, *grading);
+            BodyMesh {
+                nodes: m.nodes,
+                quads: m.quads,
+                node_sets: m.node_sets,
+                faces: m.faces,
+                file: None,
+            }
+        }
+        MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
+    };
+    if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {
+        return Err(invalid(
+            format!(
+                "body `{}`: the mesh has a node at {x:?} (its coordinates overflow)",
+                b.name
+            ),
+            "give a smaller mesh size or grading",
+        ));
+    }
+    Ok(mesh)
+}
