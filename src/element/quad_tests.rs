@@ -47,7 +47,7 @@ const U_LARGE: [[f64; 2]; 4] = [[0.0, 0.0], [0.12, 0.05], [0.02, 0.21], [-0.08, 
 #[test]
 fn tangent_matches_finite_differences_for_every_kind_and_material() {
     for m in materials() {
-        for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
+        for kind in [ElementKind::Q4, ElementKind::Q4Eas, ElementKind::Q4EasStab] {
             fd_check(kind, &m, U_LARGE);
             fd_check(kind, &m, [[0.0; 2]; 4]);
         }
@@ -103,7 +103,7 @@ proptest! {
             u[i] = [c * x - s * y + tx - x, s * x + c * y + ty - y];
         }
         for m in materials() {
-            for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
+            for kind in [ElementKind::Q4, ElementKind::Q4Eas, ElementKind::Q4EasStab] {
                 let mut a = [3e-3, -2e-3, 1e-3, 5e-4];
                 let mut r = [0.0; 8];
                 quad_residual_tangent(kind, &m, &X, &u, &mut a, &mut r, None).unwrap();
