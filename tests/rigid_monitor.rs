@@ -200,3 +200,79 @@ fn monitor_errors_name_the_key() {
         assert!(err.contains("t.toml:"), "{err}");
     }
 }
+
+/// The command line: every monitor is a named CSV column, `plot --monitor` picks one from a
+/// CSV or an MCAP recording, and a rerun file is written with a curve per monitor.
+#[test]
+fn every_monitor_is_a_csv_column_and_plot_picks_one() {
+    use std::process::Command;
+    let d = std::env::temp_dir().join(format!("contrail-monitors-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    let p = |n: &str| d.join(n).to_str().unwrap().to_string();
+    let text = with_monitors(
+        "hertz",
+        None,
+        "[[monitor]]\nlabel = \"punch\"\nrigid = \"cylinder\"\ncomponent = \"y\"\nsign = -1.0\n\n\
+         [[monitor]]\nlabel = \"base, y\"\nbody = \"block\"\nnodes = \"bottom\"\ncomponent = \"y\"\n",
+    );
+    let scene = p("two.toml");
+    std::fs::write(&scene, text).unwrap();
+    let contrail = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_contrail"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let o = contrail(&[
+        "run",
+        &scene,
+        "--quiet",
+        "--set",
+        "body.block.mesh.elements=[10, 8]",
+        "--out",
+        &p("r.csv"),
+        "--out",
+        &p("r.mcap"),
+        "--rerun-save",
+        &p("r.rrd"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(p("r.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert!(header.ends_with(&[
+        "punch.displacement",
+        "punch.force",
+        "\"base",
+        " y.displacement\"",
+        "\"base",
+        " y.force\""
+    ]));
+    // the first monitor's columns equal the plain displacement/force columns
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(last[2], last[10]);
+    assert_eq!(last[3], last[11]);
+    assert!(
+        (last[3] + last[13]).abs() <= 1e-6 * last[13].abs(),
+        "punch = −base: {last:?}"
+    );
+    assert!(std::fs::metadata(p("r.rrd")).unwrap().len() > 1000);
+    for (input, monitor) in [("r.csv", "punch"), ("r.mcap", "punch"), ("r.mcap", "base, y")] {
+        let o = contrail(&["plot", &p(input), "--monitor", monitor, "--out", &p("f.svg")]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = contrail(&["plot", &p("r.mcap"), "--monitor", "nope", "--out", &p("f.svg")]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    // (the labels, sorted: "base, y" and "punch")
+    assert!(
+        err.contains("no monitor `nope`") && err.contains("are base, y, punch"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
