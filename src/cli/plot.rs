@@ -24,6 +24,9 @@ pub struct PlotArgs {
     pub x_label: String,
     #[arg(long, default_value = "force")]
     pub y_label: String,
+    /// Which monitor to draw, by label (default: the scene's first monitor).
+    #[arg(long)]
+    pub monitor: Option<String>,
 }
 
 fn split(spec: &str) -> (String, String) {
@@ -38,9 +41,10 @@ fn split(spec: &str) -> (String, String) {
     }
 }
 
-/// The load–displacement series of a recording: the `/increment` monitor records, with a
-/// marker at every increment with a crossing.
-pub fn from_recording(r: &Recording, label: String) -> Result<Series, BadInput> {
+/// The load–displacement series of a recording: the `/increment` records of the monitor
+/// labelled `monitor` (the first without one), with a marker at every increment with a
+/// crossing.
+pub fn from_recording(r: &Recording, label: String, monitor: Option<&str>) -> Result<Series, BadInput> {
     let crossed: BTreeSet<usize> = r.crossings.iter().map(|c| c.increment).collect();
     let mut s = Series {
         label,
@@ -48,7 +52,7 @@ pub fn from_recording(r: &Recording, label: String) -> Result<Series, BadInput> 
         markers: Vec::new(),
     };
     for inc in &r.increments {
-        if let Some(m) = &inc.monitor {
+        if let Some(m) = inc.monitor_named(monitor) {
             let p = (m.displacement, m.force);
             s.points.push(p);
             if crossed.contains(&inc.increment) {
@@ -57,16 +61,29 @@ pub fn from_recording(r: &Recording, label: String) -> Result<Series, BadInput> 
         }
     }
     if s.points.is_empty() && !r.increments.is_empty() {
-        return Err(BadInput(format!(
-            "{}: the scene `{}` has no [monitor], so the recording has no load–displacement pair",
-            r.path,
-            r.scene()
-        )));
+        let known: Vec<String> = (r.increments.iter())
+            .flat_map(|i| i.all_monitors())
+            .map(|m| m.label.clone())
+            .collect::<BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        return Err(BadInput(match monitor {
+            Some(l) if !known.is_empty() => format!(
+                "{}: the recording has no monitor `{l}`\n  hint: its monitors are {}",
+                r.path,
+                known.join(", ")
+            ),
+            _ => format!(
+                "{}: the scene `{}` has no [monitor], so the recording has no load–displacement pair",
+                r.path,
+                r.scene()
+            ),
+        }));
     }
     Ok(s)
 }
 
-fn read_csv(path: &str, label: String) -> anyhow::Result<Series> {
+fn read_csv(path: &str, label: String, monitor: Option<&str>) -> anyhow::Result<Series> {
     let bytes = std::fs::read(path).map_err(|e| BadInput(format!("{path}: cannot read: {e}")))?;
     let text = String::from_utf8(bytes).map_err(|_| {
         BadInput(format!(
@@ -75,10 +92,14 @@ fn read_csv(path: &str, label: String) -> anyhow::Result<Series> {
     })?;
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let col = |n: &str| header.iter().position(|h| *h == n);
-    let (Some(dx), Some(fy), Some(cr)) = (col("displacement"), col("force"), col("crossings")) else {
+    let col = |n: &str| header.iter().position(|h| h.trim_matches('"') == n);
+    let (xd, yf) = match monitor {
+        Some(l) => (format!("{l}.displacement"), format!("{l}.force")),
+        None => ("displacement".to_string(), "force".to_string()),
+    };
+    let (Some(dx), Some(fy), Some(cr)) = (col(&xd), col(&yf), col("crossings")) else {
         return Err(BadInput(format!(
-            "{path}:1: not a contrail CSV (needs displacement, force, crossings columns)"
+            "{path}:1: not a contrail CSV with the columns {xd}, {yf}, crossings"
         ))
         .into());
     };
@@ -103,19 +124,23 @@ fn read_csv(path: &str, label: String) -> anyhow::Result<Series> {
     Ok(s)
 }
 
-fn read(spec: &str) -> anyhow::Result<Series> {
+fn read(spec: &str, monitor: Option<&str>) -> anyhow::Result<Series> {
     let (path, label) = split(spec);
     let mcap = Path::new(&path).extension().is_some_and(|e| e == "mcap")
         || std::fs::read(&path).is_ok_and(|b| b.starts_with(b"\x89MCAP"));
     if mcap {
         let r = Recording::open(Path::new(&path)).map_err(|e| BadInput(e.to_string()))?;
-        return Ok(from_recording(&r, label)?);
+        return Ok(from_recording(&r, label, monitor)?);
     }
-    read_csv(&path, label)
+    read_csv(&path, label, monitor)
 }
 
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
-    let series = a.runs.iter().map(|r| read(r)).collect::<anyhow::Result<Vec<_>>>()?;
+    let series = a
+        .runs
+        .iter()
+        .map(|r| read(r, a.monitor.as_deref()))
+        .collect::<anyhow::Result<Vec<_>>>()?;
     line_chart(&a.out, &a.title, &a.x_label, &a.y_label, &series).map_err(|e| BadInput(e.to_string()))?;
     outln!("written {}", a.out.display())?;
     Ok(ExitCode::SUCCESS)

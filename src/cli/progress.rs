@@ -84,6 +84,7 @@ mod tests {
                 displacement: 0.6413636363636566,
                 force: 4.96712,
             }),
+            monitors: vec![],
             reaction_total: [0.0; 2],
         };
         assert_eq!(

@@ -118,12 +118,12 @@ pub fn progress_lines(o: &mut String, t: &Tracker) {
             count(t.increments, "increment", "increments")
         ),
     );
-    if let Some(m) = t.last.as_ref().and_then(|l| l.monitor.as_ref()) {
-        row(
-            o,
-            "last point",
-            format!("{} = {}, force = {}", m.label, plain(m.displacement), plain(m.force)),
-        );
+    let monitors = t.last.as_ref().map_or(Vec::new(), |l| l.all_monitors());
+    if !monitors.is_empty() {
+        let points: Vec<String> = (monitors.iter())
+            .map(|m| format!("{} = {}, force = {}", m.label, plain(m.displacement), plain(m.force)))
+            .collect();
+        row(o, "last point", points.join("; "));
     }
     let failed = t.iterations.saturating_sub(t.converged_iterations);
     row(

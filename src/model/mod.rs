@@ -49,12 +49,22 @@ pub struct NodalLoad {
     pub ramp: Ramp,
 }
 
-/// Load–displacement monitor: mean displacement of a node set in one direction and the sum
-/// of the forces (reactions where prescribed, applied loads elsewhere) on it.
+/// What a monitor watches.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MonitorTarget {
+    /// A node set of a deformable body: the mean displacement of the set and the sum of the
+    /// forces on it (reactions where prescribed, applied loads elsewhere).
+    Nodes(Vec<usize>),
+    /// A rigid body (index into [`Model::rigid`]): its prescribed travel (the motion law at
+    /// `t`) and the sum of the contact forces it receives.
+    Rigid(usize),
+}
+
+/// One load–displacement monitor: a displacement and a force in one direction.
 #[derive(Debug, Clone)]
 pub struct Monitor {
     pub label: String,
-    pub nodes: Vec<usize>,
+    pub target: MonitorTarget,
     pub component: usize,
     /// `-1` to report displacement and force with flipped sign (e.g. a downward push).
     pub sign: f64,
@@ -72,10 +82,17 @@ pub struct Model {
     pub loads: Vec<NodalLoad>,
     pub rigid: Vec<RigidBody>,
     pub contacts: Vec<ContactPair>,
-    pub monitor: Option<Monitor>,
+    /// The load–displacement monitors, in scene order (the first is "the" monitor of
+    /// summaries, plots and sweeps).
+    pub monitors: Vec<Monitor>,
 }
 
 impl Model {
+    /// The first monitor, if any.
+    pub fn monitor(&self) -> Option<&Monitor> {
+        self.monitors.first()
+    }
+
     pub fn dof_count(&self) -> usize {
         2 * self.nodes.len()
     }

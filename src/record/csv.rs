@@ -1,4 +1,8 @@
 //! CSV sink: the load–displacement history, one row per converged increment.
+//!
+//! Columns: `increment, t, displacement, force` (the first monitor), `iterations, cutbacks,
+//! reaction_x, reaction_y, contact_closed, crossings`, then two named columns per monitor in
+//! scene order, `LABEL.displacement` and `LABEL.force` (quoted when the label needs it).
 
 use super::{IncrementRecord, Observer, ObserverError, Outcome, StepView};
 use std::io::Write;
@@ -21,12 +25,17 @@ impl<W: Write> CsvSink<W> {
 }
 
 impl<W: Write> Observer for CsvSink<W> {
-    fn start(&mut self, _m: &crate::model::Model, _i: &super::RunInfo) -> Result<(), ObserverError> {
-        writeln!(
-            self.out,
+    fn start(&mut self, m: &crate::model::Model, _i: &super::RunInfo) -> Result<(), ObserverError> {
+        let mut header =
             "increment,t,displacement,force,iterations,cutbacks,reaction_x,reaction_y,contact_closed,crossings"
-        )
-        .map_err(|e| self.err(e))
+                .to_string();
+        for mon in &m.monitors {
+            for q in ["displacement", "force"] {
+                header.push(',');
+                header.push_str(&field(&format!("{}.{q}", mon.label)));
+            }
+        }
+        writeln!(self.out, "{header}").map_err(|e| self.err(e))
     }
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         let (d, f) = rec
@@ -39,7 +48,7 @@ impl<W: Write> Observer for CsvSink<W> {
             .iter()
             .filter(|c| c.state != crate::contact::law::ContactState::Open)
             .count();
-        writeln!(
+        write!(
             self.out,
             "{},{:.10e},{:.10e},{:.10e},{},{},{:.10e},{:.10e},{},{}",
             rec.increment,
@@ -53,9 +62,22 @@ impl<W: Write> Observer for CsvSink<W> {
             closed,
             view.crossings.len()
         )
-        .map_err(|e| self.err(e))
+        .map_err(|e| self.err(e))?;
+        for m in &rec.monitors {
+            write!(self.out, ",{:.10e},{:.10e}", m.displacement, m.force).map_err(|e| self.err(e))?;
+        }
+        writeln!(self.out).map_err(|e| self.err(e))
     }
     fn finish(&mut self, _o: &Outcome) -> Result<(), ObserverError> {
         self.out.flush().map_err(|e| self.err(e))
+    }
+}
+
+/// A CSV field: quoted (with doubled quotes) when it has a comma, a quote or a line break.
+pub fn field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
     }
 }

@@ -75,8 +75,11 @@ pub struct ModelRecord {
     pub bodies: Vec<BodyInfo>,
     pub rigid: Vec<RigidInfo>,
     pub contacts: Vec<PairInfo>,
-    /// Label of the load–displacement monitor, if the scene has one.
+    /// Label of the first load–displacement monitor, if the scene has one.
     pub monitor: Option<String>,
+    /// Labels of all monitors, in scene order (absent in older recordings: read as empty).
+    #[serde(default)]
+    pub monitors: Vec<String>,
     /// Final pseudo-time of the stepping.
     #[serde(with = "Real")]
     pub end: f64,
@@ -151,8 +154,18 @@ impl ModelRecord {
             bodies,
             rigid,
             contacts,
-            monitor: model.monitor.as_ref().map(|m| m.label.clone()),
+            monitor: model.monitor().map(|m| m.label.clone()),
+            monitors: model.monitors.iter().map(|m| m.label.clone()).collect(),
             end,
+        }
+    }
+
+    /// Labels of every monitor: `monitors`, or the single `monitor` of an older recording.
+    pub fn monitor_labels(&self) -> Vec<String> {
+        if self.monitors.is_empty() {
+            self.monitor.iter().cloned().collect()
+        } else {
+            self.monitors.clone()
         }
     }
 

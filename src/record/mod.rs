@@ -76,14 +76,18 @@ pub struct IterationRecord {
     pub active_set_changes: usize,
 }
 
-/// A reaction (or applied) force summed over a monitored node set.
+/// One monitor at a converged increment: a node set's mean displacement and the sum of the
+/// reactions (or loads) on it, or a rigid body's prescribed travel and the sum of the contact
+/// forces it receives.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct MonitorRecord {
     pub label: String,
-    /// Mean displacement of the set in the monitored direction (sign as configured).
+    /// Mean displacement of the set, or travel of the rigid body, in the monitored direction
+    /// (sign as configured).
     #[serde(with = "Real")]
     pub displacement: f64,
-    /// Sum of reactions/loads on the set in that direction (sign as configured).
+    /// Sum of reactions/loads on the set, or of the contact forces on the rigid body, in that
+    /// direction (sign as configured).
     #[serde(with = "Real")]
     pub force: f64,
 }
@@ -105,10 +109,36 @@ pub struct IncrementRecord {
     /// Residual norms of the iterations of this increment.
     #[serde(with = "Reals")]
     pub residuals: Vec<f64>,
+    /// The first monitor of the scene (the same record as `monitors[0]`; kept for readers
+    /// of one load–displacement pair).
     pub monitor: Option<MonitorRecord>,
+    /// Every monitor of the scene, in scene order (absent in recordings made before several
+    /// monitors were possible: read as empty).
+    #[serde(default)]
+    pub monitors: Vec<MonitorRecord>,
     /// Sum of all reaction forces (x, y).
     #[serde(with = "Real2")]
     pub reaction_total: [f64; 2],
+}
+
+impl IncrementRecord {
+    /// Every monitor of the increment: `monitors`, or the single `monitor` of a recording
+    /// made before several monitors were possible.
+    pub fn all_monitors(&self) -> Vec<&MonitorRecord> {
+        if self.monitors.is_empty() {
+            self.monitor.iter().collect()
+        } else {
+            self.monitors.iter().collect()
+        }
+    }
+
+    /// The monitor labelled `label`, or the first one when `label` is `None`.
+    pub fn monitor_named(&self, label: Option<&str>) -> Option<&MonitorRecord> {
+        match label {
+            None => self.monitor.as_ref().or(self.monitors.first()),
+            Some(l) => self.all_monitors().into_iter().find(|m| m.label == l),
+        }
+    }
 }
 
 /// State of one contact slave point at the end of an increment.

@@ -2,6 +2,9 @@
 //! `/curve`) in which the curve grows with the increments as a line strip, the current point
 //! is marked and labelled with its values, and increments with a segment crossing carry a
 //! marker. Without a monitor the curve is the sum of normal forces against the load level.
+//! Each monitor of a scene has its curve: the first under `/curve`, monitor `i ≥ 1` under
+//! `/curve/monitor/i`, placed two to a row to the right of and below the first (all in the
+//! same view).
 //!
 //! Both axes are scaled to a box `WIDTH × 1` whose extents are "nice" numbers (1, 2, 5 ×
 //! 10ⁿ) at least as large as the largest value so far; the extents are written at the ends of
@@ -15,11 +18,15 @@ use rerun::RecordingStream;
 
 /// Width of the curve box (its height is 1).
 const WIDTH: f64 = 1.6;
+/// Space between the boxes of several curves.
+const GAP: f32 = 0.6;
 /// Points per logged piece of the line.
 const PIECE: usize = 100;
 
 /// The curve and what has been logged of it.
 pub(super) struct Curve {
+    /// Entity path of the curve (`curve` or `curve/monitor/i`).
+    root: String,
     x_name: String,
     y_name: String,
     points: Vec<[f64; 2]>,
@@ -30,10 +37,26 @@ pub(super) struct Curve {
 type LogResult = Result<(), rerun::RecordingStreamError>;
 
 impl Curve {
-    /// Static parts: the y-up transform of `/curve`.
-    pub(super) fn new(rec: &RecordingStream, x_name: &str, y_name: &str) -> Result<Self, rerun::RecordingStreamError> {
-        rec.log_static("curve", &rerun::Transform3D::from_scale(Y_UP_SCALE))?;
+    /// Curve `index` (0: the first, under `/curve`) and its static parts: the y-up transform
+    /// of `/curve`, or the place of a further curve next to the first.
+    pub(super) fn new(
+        rec: &RecordingStream,
+        index: usize,
+        x_name: &str,
+        y_name: &str,
+    ) -> Result<Self, rerun::RecordingStreamError> {
+        let root = if index == 0 {
+            rec.log_static("curve", &rerun::Transform3D::from_scale(Y_UP_SCALE))?;
+            "curve".to_string()
+        } else {
+            let (col, row) = ((index % 2) as f32, (index / 2) as f32);
+            let root = format!("curve/monitor/{index}");
+            let at = [col * (WIDTH as f32 + GAP), -row * (1.0 + GAP), 0.0];
+            rec.log_static(root.as_str(), &rerun::Transform3D::from_translation(at))?;
+            root
+        };
         Ok(Curve {
+            root,
             x_name: x_name.to_string(),
             y_name: y_name.to_string(),
             points: Vec::new(),
@@ -68,24 +91,27 @@ impl Curve {
         if rescaled {
             self.axes(rec)?;
             for k in 0..last {
-                rec.log(format!("curve/line/{k}"), &self.line(self.piece(k)))?;
+                rec.log(format!("{}/line/{k}", self.root), &self.line(self.piece(k)))?;
             }
         }
         // a point that starts a new piece also ends the previous one
         if !rescaled && last > 0 && self.points.len() == last * PIECE + 1 {
-            rec.log(format!("curve/line/{}", last - 1), &self.line(self.piece(last - 1)))?;
+            rec.log(
+                format!("{}/line/{}", self.root, last - 1),
+                &self.line(self.piece(last - 1)),
+            )?;
         }
-        rec.log(format!("curve/line/{last}"), &self.line(self.piece(last)))?;
+        rec.log(format!("{}/line/{last}", self.root), &self.line(self.piece(last)))?;
         if rescaled || crossed {
             rec.log(
-                "curve/crossings",
+                format!("{}/crossings", self.root),
                 &rerun::Points2D::new(self.crossings.iter().map(|p| self.to_box(*p)))
                     .with_colors([[245, 130, 25, 255]])
                     .with_radii([rerun::Radius::new_ui_points(3.0)]),
             )?;
         }
         rec.log(
-            "curve/now",
+            format!("{}/now", self.root),
             &rerun::Points2D::new([self.to_box(p)])
                 .with_colors([CURVE])
                 .with_radii([rerun::Radius::new_ui_points(5.0)])
@@ -110,7 +136,7 @@ impl Curve {
     fn axes(&self, rec: &RecordingStream) -> LogResult {
         let (w, h) = (WIDTH as f32, 1.0f32);
         rec.log(
-            "curve/axes",
+            format!("{}/axes", self.root),
             &rerun::LineStrips2D::new([
                 vec![[0.0, 0.0], [w, 0.0]],
                 vec![[0.0, 0.0], [0.0, h]],
@@ -122,7 +148,7 @@ impl Curve {
             .with_radii([rerun::Radius::new_ui_points(0.75)]),
         )?;
         rec.log(
-            "curve/ticks",
+            format!("{}/ticks", self.root),
             &rerun::Points2D::new([[0.0, 0.0], [w, 0.0], [0.0, h], [w / 2.0, 0.0], [0.0, h / 2.0]])
                 .with_colors([AXES])
                 .with_radii([rerun::Radius::new_ui_points(1.0)])

@@ -36,7 +36,8 @@ pub struct RerunView {
     /// Arrow length at the Coulomb limit and offset of the arrows from the face.
     arrow_len: f64,
     arrow_offset: f64,
-    curve: Curve,
+    /// One force–displacement curve per monitor (or `ΣN` against `t` without one).
+    curves: Vec<Curve>,
     /// Running count of Newton iterations (timeline `newton`).
     newton: i64,
     /// Reference force of the last Newton iteration (for the final residual of an increment).
@@ -103,18 +104,22 @@ impl RerunView {
             rec.log_static(path, &rerun::SeriesLines::new().with_names([name]))
                 .map_err(e)?;
         }
-        let (x_name, y_name) = match &model.monitor {
-            Some(m) => (m.clone(), "force".to_string()),
-            None => ("t".to_string(), "ΣN".to_string()),
+        let labels = model.monitor_labels();
+        let curves = if labels.is_empty() {
+            vec![Curve::new(&rec, 0, "t", "ΣN").map_err(e)?]
+        } else {
+            (labels.iter().enumerate())
+                .map(|(i, l)| Curve::new(&rec, i, l, "force"))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(e)?
         };
-        let curve = Curve::new(&rec, &x_name, &y_name).map_err(e)?;
         Ok(RerunView {
             rec,
             model: model.clone(),
             edges,
             arrow_len: ARROW_FRACTION * size,
             arrow_offset: ARROW_OFFSET_FRACTION * size,
-            curve,
+            curves,
             newton: 0,
             reference: 0.0,
         })
@@ -159,11 +164,16 @@ impl RerunView {
         }
         self.contact(contact, crossings)?;
         let total_n: f64 = contact.iter().map(|c| c.normal_force).filter(|x| x.is_finite()).sum();
-        let point = match &inc.monitor {
-            Some(m) => [m.displacement, m.force],
-            None => [inc.t, total_n],
-        };
-        self.curve.push(&self.rec, point, !crossings.is_empty()).map_err(e)?;
+        let monitors = inc.all_monitors();
+        let crossed = !crossings.is_empty();
+        if monitors.is_empty() {
+            if let Some(c) = self.curves.first_mut() {
+                c.push(&self.rec, [inc.t, total_n], crossed).map_err(e)?;
+            }
+        }
+        for (c, m) in self.curves.iter_mut().zip(&monitors) {
+            c.push(&self.rec, [m.displacement, m.force], crossed).map_err(e)?;
+        }
         for c in crossings {
             let pair = self.model.contacts.get(c.pair).map_or("?", |p| p.name.as_str());
             let slave = self

@@ -7,8 +7,8 @@ use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
-    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, NodalLoad, OwnedVertex, Piece, Prescribed,
-    Ramp, RigidBody, RigidShape, Slave,
+    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, MonitorTarget, NodalLoad, OwnedVertex, Piece,
+    Prescribed, Ramp, RigidBody, RigidShape, Slave,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -175,7 +175,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         loads: Vec::new(),
         rigid: Vec::new(),
         contacts: Vec::new(),
-        monitor: None,
+        monitors: Vec::new(),
     };
     let mut mesh_files = Vec::new();
     for b in &s.bodies {
@@ -287,11 +287,27 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         m.contacts.push(pair);
     }
     own_vertices(&mut m);
-    if let Some(mon) = &s.monitor {
-        let bi = body_index(&cx, &m, &mon.body)?;
-        m.monitor = Some(Monitor {
+    for mon in s.monitors.iter() {
+        let target = match (&mon.rigid, &mon.body, &mon.nodes) {
+            (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(&cx, &m, r)?),
+            (None, Some(b), Some(sel)) => {
+                let bi = body_index(&cx, &m, b)?;
+                MonitorTarget::Nodes(select(&cx, &m, bi, sel)?)
+            }
+            _ => {
+                return Err(cx.err(
+                    &mon.label,
+                    format!(
+                        "monitor `{}` needs either `rigid` or both `body` and `nodes`",
+                        mon.label
+                    ),
+                    "e.g. `rigid = \"punch\"`, or `body = \"block\"` with `nodes = \"top\"`",
+                ))
+            }
+        };
+        m.monitors.push(Monitor {
             label: mon.label.clone(),
-            nodes: select(&cx, &m, bi, &mon.nodes)?,
+            target,
             component: comp(mon.component),
             sign: mon.sign,
         });

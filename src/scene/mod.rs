@@ -6,6 +6,7 @@
 mod build;
 pub mod builtin;
 mod mesh;
+pub mod monitors;
 mod overrides;
 pub mod types;
 pub mod validate;

@@ -30,7 +30,8 @@ pub struct SceneFile {
     pub stepping: Stepping,
     #[serde(default)]
     pub solver: NewtonSettings,
-    pub monitor: Option<MonitorSpec>,
+    #[serde(default, rename = "monitor")]
+    pub monitors: super::monitors::Monitors,
     /// Model-size limits checked before anything is allocated.
     #[serde(default)]
     pub limits: Limits,
@@ -301,14 +302,22 @@ fn default_transfer() -> TransferKind {
     TransferKind::Continuous
 }
 
-/// Which load–displacement pair to report.
+/// One load–displacement pair to report: a node set of a deformable body (`body` and
+/// `nodes`: mean displacement of the set, sum of its reactions or loads) or a rigid body
+/// (`rigid`: its prescribed travel, the sum of the contact forces it receives).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MonitorSpec {
+    /// Column and curve name; unique among the monitors.
     pub label: String,
-    pub body: String,
-    pub nodes: NodeSelection,
+    /// Deformable body of the node set (with `nodes`).
+    pub body: Option<String>,
+    /// The node set (with `body`).
+    pub nodes: Option<NodeSelection>,
+    /// A rigid body instead of a node set.
+    pub rigid: Option<String>,
     pub component: Component,
+    /// Multiplies displacement and force (e.g. −1 to report a downward push as positive).
     #[serde(default = "unit")]
     pub sign: f64,
 }

@@ -29,6 +29,9 @@ pub const MAX_COORDINATE: f64 = 1e12;
 /// calibrated on a 10⁶-element mesh, which used about 4.5 GB before running out of memory.
 pub const BYTES_PER_DOF: f64 = 2_250.0;
 
+#[path = "validate_monitors.rs"]
+mod monitors;
+
 /// One step of a key path: a table key or an array index.
 #[derive(Debug, Clone, Copy)]
 enum P<'a> {
@@ -244,10 +247,7 @@ pub fn validate(src: &SceneSource, s: &SceneFile) -> Result<(), SceneError> {
     for (i, k) in s.contacts.iter().enumerate() {
         contact(&c, i, k, min_h, ext.0)?;
     }
-    if let Some(m) = &s.monitor {
-        c.selection(&[P::K("monitor"), P::K("nodes")], "monitor.nodes", &m.nodes)?;
-        c.finite(&[P::K("monitor"), P::K("sign")], "monitor.sign", m.sign)?;
-    }
+    monitors::check(&c, s)?;
     Ok(())
 }
 

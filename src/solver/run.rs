@@ -85,32 +85,15 @@ pub struct RunSummary {
     pub crossings: usize,
     pub wall_time_s: f64,
     pub t: f64,
+    /// The first monitor at the last converged increment.
     pub monitor: Option<MonitorRecord>,
+    /// All monitors at the last converged increment, in scene order.
+    pub monitors: Vec<MonitorRecord>,
     pub symbolic_factorizations: usize,
     /// Where the time of the Newton iterations went.
     pub timings: Timings,
     /// Time spent handing records to the observer (serialising, writing, viewing).
     pub recording_s: f64,
-}
-
-fn monitor(model: &Model, asm: &Assembler, u: &[f64], t: f64) -> Option<MonitorRecord> {
-    let m = model.monitor.as_ref()?;
-    let mut disp = 0.0;
-    let mut force = 0.0;
-    for &n in &m.nodes {
-        let d = 2 * n + m.component;
-        disp += u[d];
-        force += if asm.dofs.eq[d].is_none() {
-            asm.r_full[d]
-        } else {
-            model.loads.iter().filter(|l| l.dof == d).map(|l| l.ramp.at(t)).sum()
-        };
-    }
-    Some(MonitorRecord {
-        label: m.label.clone(),
-        displacement: m.sign * disp / m.nodes.len().max(1) as f64,
-        force: m.sign * force,
-    })
 }
 
 fn log(
@@ -319,9 +302,11 @@ fn drive(
         };
         // records first: they compare the converged iterate with the previous increment
         let handed = Instant::now();
-        let points: Vec<ContactPointRecord> = (committed.contact.snapshots(&cfg).iter())
+        let snapshots = committed.contact.snapshots(&cfg);
+        let points: Vec<ContactPointRecord> = (snapshots.iter())
             .map(|p| ContactPointRecord::from_snapshot(model, p))
             .collect();
+        let monitors = super::monitor::records(model, &asm, &committed.u, t, &snapshots);
         // committing the history is physics, not recording: kept out of the recording time
         let committing = Instant::now();
         let events = committed.contact.commit(&cfg);
@@ -341,10 +326,12 @@ fn drive(
             converged: true,
             wall_time_s: t_inc.elapsed().as_secs_f64(),
             residuals: conv.residuals,
-            monitor: monitor(model, &asm, &committed.u, t),
+            monitor: monitors.first().cloned(),
+            monitors,
             reaction_total,
         };
         summary.monitor = rec.monitor.clone();
+        summary.monitors = rec.monitors.clone();
         obs.increment(
             &rec,
             &StepView {

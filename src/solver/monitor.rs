@@ -1,0 +1,114 @@
+//! The load–displacement monitors of a converged increment.
+//!
+//! - A node set: the mean displacement of its nodes in the monitored direction and the sum of
+//!   the forces on them (the reaction where the DOF is prescribed, the applied load elsewhere).
+//! - A rigid body: its prescribed travel (the motion law at `t`, i.e. the translation from
+//!   its scene position) and the sum of the contact forces it *receives* in that direction,
+//!   taken from the contact point snapshots of the converged state: a slave point of a pair
+//!   receives `f = N n + T τ` (normal force along the master's outward normal, returned
+//!   tangential traction along the unit tangent); the master of that pair receives `−f`
+//!   (the point's residual is invariant under a translation of all its nodes, so its forces
+//!   sum to zero). The rigid body's force is the sum of `−f` over the closed points of the
+//!   pairs whose master it is, and of `f` over the pairs whose slave is one of its points or
+//!   vertices. The contact force is what holds the prescribed motion: its negative is the
+//!   force the drive applies.
+//!
+//! The directions are read from the snapshot: `n` is the master normal, except for a point
+//! pinned to a concave vertex (see [`crate::contact::vertex`]) whose force acts along the
+//! line from the vertex to the slave; `(position − contact point) / gap` gives that line in
+//! both cases, and is used when it departs from `n`. On a curved (arc) master the tangential
+//! part neglects the curvature factor `1/(1 − ζ κ_n)` of `∇ξ` (relative error `|ζ|/R`;
+//! nothing for frictionless contact).
+
+use crate::assembly::Assembler;
+use crate::contact::events::PointSnapshot;
+use crate::contact::law::ContactState;
+use crate::model::{Master, Model, Monitor, MonitorTarget, Slave};
+use crate::record::MonitorRecord;
+
+/// The records of all monitors of `model` at the converged state `u`, load level `t`.
+pub fn records(model: &Model, asm: &Assembler, u: &[f64], t: f64, points: &[PointSnapshot]) -> Vec<MonitorRecord> {
+    model
+        .monitors
+        .iter()
+        .map(|m| record(model, m, asm, u, t, points))
+        .collect()
+}
+
+fn record(model: &Model, m: &Monitor, asm: &Assembler, u: &[f64], t: f64, points: &[PointSnapshot]) -> MonitorRecord {
+    let (displacement, force) = match &m.target {
+        MonitorTarget::Nodes(nodes) => {
+            let mut disp = 0.0;
+            let mut force = 0.0;
+            for &n in nodes {
+                let d = 2 * n + m.component;
+                disp += u[d];
+                force += if asm.dofs.eq[d].is_none() {
+                    asm.r_full[d]
+                } else {
+                    model.loads.iter().filter(|l| l.dof == d).map(|l| l.ramp.at(t)).sum()
+                };
+            }
+            (disp / nodes.len().max(1) as f64, force)
+        }
+        MonitorTarget::Rigid(r) => {
+            let travel = model.rigid[*r].offset(t)[m.component];
+            (travel, rigid_contact_force(model, *r, points)[m.component])
+        }
+    };
+    MonitorRecord {
+        label: m.label.clone(),
+        displacement: m.sign * displacement,
+        force: m.sign * force,
+    }
+}
+
+/// Sum of the contact forces rigid body `r` receives (x, y).
+pub fn rigid_contact_force(model: &Model, r: usize, points: &[PointSnapshot]) -> [f64; 2] {
+    let mut total = [0.0; 2];
+    for p in points.iter().filter(|p| p.state != ContactState::Open) {
+        let Some(pair) = model.contacts.get(p.pair) else {
+            continue;
+        };
+        let as_master = matches!(pair.master, Master::Rigid { body, .. } if body == r);
+        let as_slave = matches!(p.slave_id, Slave::RigidPoint(b) | Slave::RigidVertex(b, _) if b == r);
+        let sign = match (as_master, as_slave) {
+            (true, false) => -1.0,
+            (false, true) => 1.0,
+            _ => continue, // not this body's, or a rigid body against itself (no net force)
+        };
+        let f = slave_force(p);
+        total[0] += sign * f[0];
+        total[1] += sign * f[1];
+    }
+    total
+}
+
+/// The contact force on the slave of a closed point: `N n + T τ`, `τ` = `n` turned by +90°.
+pub fn slave_force(p: &PointSnapshot) -> [f64; 2] {
+    let n = force_normal(p);
+    let tau = [-n[1], n[0]];
+    [
+        p.normal_force * n[0] + p.traction * tau[0],
+        p.normal_force * n[1] + p.traction * tau[1],
+    ]
+}
+
+/// The direction of the normal force: the master normal, or the vertex-to-slave line of a
+/// point pinned to a vertex (where the two differ).
+fn force_normal(p: &PointSnapshot) -> [f64; 2] {
+    let d = [p.position[0] - p.contact_point[0], p.position[1] - p.contact_point[1]];
+    let len = d[0].hypot(d[1]);
+    let scale = p.position[0].abs().max(p.position[1].abs()).max(1.0);
+    if !(p.gap.is_finite() && len > 1e-9 * scale) {
+        return p.normal;
+    }
+    // ζ n = position − contact point for a projection, and for a pinned point
+    let s = p.gap.signum() / len;
+    let line = [d[0] * s, d[1] * s];
+    if line[0] * p.normal[0] + line[1] * p.normal[1] > 1.0 - 1e-9 {
+        p.normal
+    } else {
+        line
+    }
+}
