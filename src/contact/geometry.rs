@@ -13,23 +13,23 @@
 //! A projection with `|ξ| > 1` belongs to a neighbouring segment; the search in
 //! [`super::search`] walks there.
 
-use super::scalar::{add, dot, lift, scale, sub, Scalar, V2};
+use super::scalar::{Scalar, V2};
+use super::surface::face::FaceSegment;
+use super::surface::rigid_arc::RigidArc;
+use super::surface::rigid_line::RigidLine;
+use super::surface::MasterSegment;
 use crate::model::Piece;
 
-/// A master segment with its current geometry in scalar type `S`.
+/// A master segment with its current geometry in scalar type `S`: one arm per kind of
+/// [`MasterSegment`] (one file each in [`super::surface`]).
 #[derive(Debug, Clone, Copy)]
 pub enum SegmentGeom<S: Scalar> {
-    /// Linear segment between current node positions `x1` (ξ = −1) and `x2` (ξ = +1):
-    /// `ρ(ξ) = N1 x1 + N2 x2`, `N1,2 = (1 ∓ ξ)/2`, `ρ_1 = (x2 − x1)/2`.
-    Linear { x1: V2<S>, x2: V2<S> },
-    /// Rigid circular arc, translated by `offset`: `ρ = c + r (cos θ, sin θ)`,
-    /// `θ = θ₀ + (ξ + 1)(θ₁ − θ₀)/2`, `ρ_1 = r (θ₁ − θ₀)/2 (−sin θ, cos θ)`.
-    Arc {
-        centre: [f64; 2],
-        radius: f64,
-        theta0: f64,
-        theta1: f64,
-    },
+    /// Segment of a deformable face between the current positions of two nodes.
+    Face(FaceSegment<S>),
+    /// Straight piece of a rigid outline.
+    RigidLine(RigidLine),
+    /// Circular-arc piece of a rigid outline.
+    RigidArc(RigidArc),
 }
 
 /// Result of the closest-point projection of a slave point onto one segment.
@@ -56,116 +56,65 @@ impl<S: Scalar> Projection<S> {
 }
 
 impl<S: Scalar> SegmentGeom<S> {
+    /// Linear face segment from `x1` (`ξ = −1`) to `x2` (`ξ = +1`).
+    pub fn linear(x1: V2<S>, x2: V2<S>) -> Self {
+        SegmentGeom::Face(FaceSegment { x1, x2 })
+    }
+
     /// Rigid piece translated by `offset`.
     pub fn from_piece(piece: &Piece, offset: [f64; 2]) -> Self {
         match *piece {
-            Piece::Segment { a, b } => SegmentGeom::Linear {
-                x1: lift([a[0] + offset[0], a[1] + offset[1]]),
-                x2: lift([b[0] + offset[0], b[1] + offset[1]]),
-            },
+            Piece::Segment { a, b } => SegmentGeom::RigidLine(RigidLine {
+                a: [a[0] + offset[0], a[1] + offset[1]],
+                b: [b[0] + offset[0], b[1] + offset[1]],
+            }),
             Piece::Arc {
                 centre,
                 radius,
                 theta0,
                 theta1,
-            } => SegmentGeom::Arc {
+            } => SegmentGeom::RigidArc(RigidArc {
                 centre: [centre[0] + offset[0], centre[1] + offset[1]],
                 radius,
                 theta0,
                 theta1,
-            },
+            }),
+        }
+    }
+
+    fn surface(&self) -> &dyn MasterSegment<S> {
+        match self {
+            SegmentGeom::Face(f) => f,
+            SegmentGeom::RigidLine(l) => l,
+            SegmentGeom::RigidArc(a) => a,
         }
     }
 
     /// `ρ(ξ)` and `ρ_1(ξ)` at a given convective coordinate.
     pub fn eval(&self, xi: S) -> (V2<S>, V2<S>) {
-        match *self {
-            SegmentGeom::Linear { x1, x2 } => {
-                let half = S::from(0.5);
-                let mid = scale(add(x1, x2), half);
-                let rho1 = scale(sub(x2, x1), half);
-                (add(mid, scale(rho1, xi)), rho1)
-            }
-            SegmentGeom::Arc {
-                centre,
-                radius,
-                theta0,
-                theta1,
-            } => {
-                let dth = 0.5 * (theta1 - theta0);
-                let th = xi * dth + (theta0 + dth);
-                let (s, c) = (th.sin(), th.cos());
-                (
-                    [c * radius + centre[0], s * radius + centre[1]],
-                    [s * (-radius * dth), c * (radius * dth)],
-                )
-            }
-        }
+        self.surface().eval(xi)
     }
 
-    /// Closest-point projection of `rs` (explicit for both segment kinds):
-    /// linear: `ξ = (r_s − (x1 + x2)/2)·ρ_1 / a11`; arc: `ξ` from the polar angle of
-    /// `r_s − c`, unwrapped about the arc's mid-angle.
+    /// Closest-point projection of `rs` (explicit for every kind, see its file).
     pub fn project(&self, rs: V2<S>) -> Projection<S> {
-        let xi = match *self {
-            SegmentGeom::Linear { x1, x2 } => {
-                let half = S::from(0.5);
-                let mid = scale(add(x1, x2), half);
-                let rho1 = scale(sub(x2, x1), half);
-                dot(sub(rs, mid), rho1) / dot(rho1, rho1)
-            }
-            SegmentGeom::Arc {
-                centre, theta0, theta1, ..
-            } => {
-                let d = sub(rs, lift(centre));
-                let mid = 0.5 * (theta0 + theta1);
-                // rotate d by −mid, then atan2 gives the angle relative to the mid-angle
-                let (sm, cm) = mid.sin_cos();
-                let dx = d[0] * cm + d[1] * sm;
-                let dy = d[1] * cm - d[0] * sm;
-                let rel = dy.atan2(dx);
-                rel * (2.0 / (theta1 - theta0))
-            }
-        };
-        let (rho, rho1) = self.eval(xi);
-        let a11 = dot(rho1, rho1);
-        let inv = a11.sqrt().recip();
-        let n = [rho1[1] * inv, -rho1[0] * inv];
-        let gap = dot(sub(rs, rho), n);
-        Projection {
-            xi,
-            gap,
-            rho,
-            rho1,
-            a11,
-        }
+        self.surface().project(rs)
     }
 
     /// Current length of the segment (arc length for arcs).
     pub fn length(&self) -> S {
-        match *self {
-            SegmentGeom::Linear { x1, x2 } => {
-                let d = sub(x2, x1);
-                dot(d, d).sqrt()
-            }
-            SegmentGeom::Arc {
-                radius, theta0, theta1, ..
-            } => S::from(radius * (theta1 - theta0).abs()),
-        }
+        self.surface().length()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::scalar::{dot, sub};
 
     #[test]
     fn linear_projection_and_sign_convention() {
         // bottom face of a body running +x: outward normal is −y
-        let s = SegmentGeom::<f64>::Linear {
-            x1: [0.0, 0.0],
-            x2: [2.0, 0.0],
-        };
+        let s = SegmentGeom::<f64>::linear([0.0, 0.0], [2.0, 0.0]);
         let p = s.project([1.5, 0.1]); // slave above the bottom face = inside the body
         assert!((p.xi - 0.5).abs() < 1e-15);
         assert!((p.gap + 0.1).abs() < 1e-15, "penetration is negative");
@@ -175,12 +124,12 @@ mod tests {
 
     #[test]
     fn arc_projection_counter_clockwise_is_outside_of_disc() {
-        let s = SegmentGeom::<f64>::Arc {
+        let s = SegmentGeom::<f64>::RigidArc(RigidArc {
             centre: [0.0, 0.0],
             radius: 2.0,
             theta0: -2.5,
             theta1: -0.6,
-        };
+        });
         let mid = -1.55f64;
         let p = s.project([3.0 * mid.cos(), 3.0 * mid.sin()]);
         assert!(p.xi.abs() < 1e-12);
@@ -195,10 +144,7 @@ mod tests {
 
     #[test]
     fn projection_is_orthogonal() {
-        let s = SegmentGeom::<f64>::Linear {
-            x1: [0.3, -0.2],
-            x2: [1.7, 0.9],
-        };
+        let s = SegmentGeom::<f64>::linear([0.3, -0.2], [1.7, 0.9]);
         let rs = [0.4, 1.1];
         let p = s.project(rs);
         let d = sub(rs, p.rho);

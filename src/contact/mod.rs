@@ -7,6 +7,7 @@ pub mod pairing;
 pub mod point;
 pub mod scalar;
 pub mod search;
+pub mod surface;
 pub mod system;
 pub mod transfer;
 pub mod vertex;

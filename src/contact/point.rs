@@ -105,7 +105,7 @@ pub struct PointEval<S: Scalar> {
 
 fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
     match src {
-        SegSource::Face([a, b]) => SegmentGeom::Linear { x1: q[*a], x2: q[*b] },
+        SegSource::Face([a, b]) => SegmentGeom::linear(q[*a], q[*b]),
         SegSource::Rigid(p, off) => SegmentGeom::from_piece(p, *off),
     }
 }

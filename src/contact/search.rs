@@ -187,10 +187,7 @@ mod tests {
 
     fn chain() -> Vec<SegmentGeom<f64>> {
         (0..10)
-            .map(|i| SegmentGeom::Linear {
-                x1: [i as f64, 0.0],
-                x2: [i as f64 + 1.0, 0.0],
-            })
+            .map(|i| SegmentGeom::linear([i as f64, 0.0], [i as f64 + 1.0, 0.0]))
             .collect()
     }
 

@@ -136,10 +136,7 @@ impl Config<'_> {
     /// Current geometry of segment `k` of a pair's master.
     pub fn segment(&self, pair: &ContactPair, k: usize) -> SegmentGeom<f64> {
         match self.seg_source(pair, k) {
-            (_, Some([a, b])) => SegmentGeom::Linear {
-                x1: self.node(a),
-                x2: self.node(b),
-            },
+            (_, Some([a, b])) => SegmentGeom::linear(self.node(a), self.node(b)),
             (SegSource::Rigid(p, o), None) => SegmentGeom::from_piece(&p, o),
             _ => unreachable!(),
         }
