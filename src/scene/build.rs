@@ -113,25 +113,50 @@ fn rigid_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError>
     })
 }
 
+fn arc_piece(a: &ArcSpec) -> Piece {
+    Piece::Arc {
+        centre: a.centre,
+        radius: a.radius,
+        theta0: a.from_deg.to_radians(),
+        theta1: a.to_deg.to_radians(),
+    }
+}
+
+fn line_pieces(pts: &[[f64; 2]]) -> impl Iterator<Item = Piece> + '_ {
+    pts.windows(2).map(|w| Piece::Segment { a: w[0], b: w[1] })
+}
+
 fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
-    let hint = "give exactly one of `point`, `polyline` or `arc`";
-    match (&r.point, &r.polyline, &r.arc) {
-        (Some(p), None, None) => Ok(RigidShape::Point { at: *p }),
-        (None, Some(pts), None) if pts.len() >= 2 => Ok(RigidShape::Surface {
-            pieces: pts.windows(2).map(|w| Piece::Segment { a: w[0], b: w[1] }).collect(),
+    let hint = "give exactly one of `point`, `polyline`, `arc` or `outline`";
+    match (&r.point, &r.polyline, &r.arc, &r.outline) {
+        (Some(p), None, None, None) => Ok(RigidShape::Point { at: *p }),
+        (None, Some(pts), None, None) if pts.len() >= 2 => Ok(RigidShape::Surface {
+            pieces: line_pieces(pts).collect(),
         }),
-        (None, None, Some(a)) if a.radius > 0.0 && a.from_deg != a.to_deg => Ok(RigidShape::Surface {
-            pieces: vec![Piece::Arc {
-                centre: a.centre,
-                radius: a.radius,
-                theta0: a.from_deg.to_radians(),
-                theta1: a.to_deg.to_radians(),
-            }],
+        (None, None, Some(a), None) if a.radius > 0.0 && a.from_deg != a.to_deg => Ok(RigidShape::Surface {
+            pieces: vec![arc_piece(a)],
         }),
+        (None, None, None, Some(parts)) if !parts.is_empty() => {
+            let mut pieces = Vec::new();
+            for part in parts {
+                match (&part.line, &part.arc) {
+                    (Some(pts), None) if pts.len() >= 2 => pieces.extend(line_pieces(pts)),
+                    (None, Some(a)) if a.radius > 0.0 && a.from_deg != a.to_deg => pieces.push(arc_piece(a)),
+                    _ => {
+                        return Err(cx.err(
+                            &r.name,
+                            format!("rigid body `{}`: an outline piece is not a valid line or arc", r.name),
+                            hint,
+                        ))
+                    }
+                }
+            }
+            Ok(RigidShape::Surface { pieces })
+        }
         _ => Err(cx.err(
             &r.name,
             format!(
-                "rigid body `{}` is not a valid point, polyline (≥ 2 points) or arc",
+                "rigid body `{}` is not a valid point, polyline (≥ 2 points), arc or outline",
                 r.name
             ),
             hint,

@@ -198,9 +198,23 @@ pub struct RigidSpec {
     pub polyline: Option<Vec<[f64; 2]>>,
     /// A circular arc; counter-clockwise (`from_deg < to_deg`) is the outside of a disc.
     pub arc: Option<ArcSpec>,
+    /// A composite outline: line and arc pieces joined end to end, listed with the rigid
+    /// body on the left of the direction of travel (a block with a rounded corner, a drum
+    /// with flats, a punch with fillets).
+    pub outline: Option<Vec<PieceSpec>>,
     /// Prescribed translation histories.
     #[serde(default, rename = "move")]
     pub motion: MotionSpec,
+}
+
+/// One piece of a composite rigid outline: exactly one of `line` or `arc`.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PieceSpec {
+    /// A polyline piece (≥ 2 points).
+    pub line: Option<Vec<[f64; 2]>>,
+    /// An arc piece.
+    pub arc: Option<ArcSpec>,
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]

@@ -31,6 +31,8 @@ pub const BYTES_PER_DOF: f64 = 2_250.0;
 
 #[path = "validate_monitors.rs"]
 mod monitors;
+#[path = "validate_rigid.rs"]
+mod rigid;
 
 /// One step of a key path: a table key or an array index.
 #[derive(Debug, Clone, Copy)]
@@ -242,7 +244,7 @@ pub fn validate(src: &SceneSource, s: &SceneFile) -> Result<(), SceneError> {
         )?;
     }
     for (i, r) in s.rigid.iter().enumerate() {
-        rigid(&c, i, r, &mut ext)?;
+        rigid::check(&c, i, r, &mut ext)?;
     }
     for (i, k) in s.contacts.iter().enumerate() {
         contact(&c, i, k, min_h, ext.0)?;
@@ -446,88 +448,6 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             ),
             "use fewer elements, or raise the limit with --set limits.max_memory_gib=X",
         ));
-    }
-    Ok(())
-}
-
-fn rigid(c: &Check, i: usize, r: &RigidSpec, ext: &mut Extent) -> R {
-    let key = named("rigid", &r.name);
-    let p = [P::K("rigid"), P::I(i)];
-    if let Some(pt) = r.point {
-        c.point(&sub(&p, "point"), &format!("{key}.point"), pt, ext)?;
-    }
-    if let Some(pts) = &r.polyline {
-        let pp = sub(&p, "polyline");
-        for (k, q) in pts.iter().enumerate() {
-            let at: Vec<P> = pp.iter().copied().chain([P::I(k)]).collect();
-            c.point(&at, &format!("{key}.polyline[{k}]"), *q, ext)?;
-        }
-        if pts.len() < 2 {
-            return Err(c.fail(
-                &pp,
-                &format!("{key}.polyline"),
-                format!("{} point(s)", pts.len()),
-                "a polyline needs at least 2 points",
-                "list at least two points [[x, y], [x, y]]",
-            ));
-        }
-        for (k, w) in pts.windows(2).enumerate() {
-            if w[0] == w[1] {
-                let at: Vec<P> = pp.iter().copied().chain([P::I(k + 1)]).collect();
-                return Err(c.fail(
-                    &at,
-                    &format!("{key}.polyline[{}]", k + 1),
-                    format!("{:?}", w[1]),
-                    "repeats the previous point (a segment of zero length)",
-                    "remove the repeated point",
-                ));
-            }
-        }
-    }
-    if let Some(a) = &r.arc {
-        let ap = sub(&p, "arc");
-        c.point(&sub(&ap, "centre"), &format!("{key}.arc.centre"), a.centre, ext)?;
-        c.positive(&sub(&ap, "radius"), &format!("{key}.arc.radius"), a.radius)?;
-        ext.add(a.centre[0].abs().max(a.centre[1].abs()) + a.radius);
-        c.finite(&sub(&ap, "from_deg"), &format!("{key}.arc.from_deg"), a.from_deg)?;
-        c.finite(&sub(&ap, "to_deg"), &format!("{key}.arc.to_deg"), a.to_deg)?;
-        let sweep = a.to_deg - a.from_deg;
-        if sweep == 0.0 || sweep.abs() > 360.0 {
-            return Err(c.fail(
-                &sub(&ap, "to_deg"),
-                &format!("{key}.arc.to_deg"),
-                a.to_deg,
-                &format!(
-                    "the arc from {}° sweeps {sweep}°; it must sweep more than 0° and at most 360°",
-                    a.from_deg
-                ),
-                "give from_deg and to_deg less than a full turn apart",
-            ));
-        }
-        if let Some(side) = a.side {
-            let ccw = sweep > 0.0;
-            let want = if ccw { ArcSide::Inside } else { ArcSide::Outside };
-            if side != want {
-                return Err(c.fail(
-                    &sub(&ap, "side"),
-                    &format!("{key}.arc.side"),
-                    format!("\"{}\"", side.name()),
-                    &format!(
-                        "the arc runs {} (from_deg = {}, to_deg = {}), which puts the rigid body {} the circle",
-                        if ccw { "counter-clockwise" } else { "clockwise" },
-                        a.from_deg,
-                        a.to_deg,
-                        want.name()
-                    ),
-                    "swap from_deg and to_deg, or correct `side` (inside: a disc, outside: a cavity)",
-                ));
-            }
-        }
-    }
-    for (k, m) in [("x", &r.motion.x), ("y", &r.motion.y)] {
-        if let Some(m) = m {
-            c.ramp(&sub(&sub(&p, "move"), k), &format!("{key}.move.{k}"), m, ext)?;
-        }
     }
     Ok(())
 }

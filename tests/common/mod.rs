@@ -22,6 +22,18 @@ pub fn scene_text(text: &str) -> Problem {
     contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The error message of a scene in TOML text that does not load.
+pub fn scene_text_err(text: &str) -> String {
+    let src = contrail::scene::SceneSource {
+        origin: "test.toml".into(),
+        text: text.into(),
+    };
+    match contrail::scene::parse(&src, &[]).and_then(|f| contrail::scene::build(&src, &f)) {
+        Ok(_) => panic!("the scene loaded"),
+        Err(e) => e.to_string(),
+    }
+}
+
 /// Run a model, keeping every record in memory.
 pub fn solve(problem: &Problem) -> (Result<RunSummary, SolveError>, Memory) {
     let src = contrail::scene::SceneSource {
