@@ -113,6 +113,36 @@ fn rigid_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError>
     })
 }
 
+/// Consistent nodal forces of a dead body load, summed per DOF, as nodal loads.
+fn body_load(cx: &Ctx, m: &mut Model, bl: &BodyLoadSpec, end: f64) -> Result<(), SceneError> {
+    let bi = body_index(cx, m, &bl.body)?;
+    if !bl.force.iter().all(|v| v.is_finite()) {
+        return Err(cx.err(
+            &bl.body,
+            format!("body_load on `{}`: force {:?} is not finite", bl.body, bl.force),
+            "give a finite force per unit volume [bx, by]",
+        ));
+    }
+    let factor = bl.factor.as_ref().map_or(Ramp::linear(1.0, end), |f| ramp(f, end));
+    let mut total = std::collections::BTreeMap::<usize, f64>::new();
+    let mut f = [0.0; 8];
+    for e in m.elements.iter().filter(|e| e.body == bi) {
+        let x = e.nodes.map(|n| m.nodes[n]);
+        crate::element::body_force::quad_body_force(&x, bl.force, &mut f);
+        for (i, &n) in e.nodes.iter().enumerate() {
+            for c in 0..2 {
+                *total.entry(2 * n + c).or_default() += f[2 * i + c];
+            }
+        }
+    }
+    for (dof, value) in total.into_iter().filter(|(_, v)| *v != 0.0) {
+        let mut r = factor.clone();
+        r.knots.iter_mut().for_each(|k| k.1 *= value);
+        m.loads.push(NodalLoad { dof, ramp: r });
+    }
+    Ok(())
+}
+
 fn arc_piece(a: &ArcSpec) -> Piece {
     Piece::Arc {
         centre: a.centre,
@@ -296,6 +326,9 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
                 ramp: r.clone(),
             });
         }
+    }
+    for bl in &s.body_loads {
+        body_load(&cx, &mut m, bl, end)?;
     }
     for r in &s.rigid {
         let shape = rigid_shape(&cx, r)?;

@@ -22,6 +22,9 @@ pub struct SceneFile {
     /// Dead nodal forces.
     #[serde(default, rename = "load")]
     pub loads: Vec<LoadSpec>,
+    /// Dead body loads (gravity) per deformable body.
+    #[serde(default, rename = "body_load")]
+    pub body_loads: Vec<BodyLoadSpec>,
     #[serde(default, rename = "rigid")]
     pub rigid: Vec<RigidSpec>,
     #[serde(default, rename = "contact")]
@@ -185,6 +188,18 @@ pub struct LoadSpec {
     pub component: Component,
     /// Total force (split equally over the nodes) as a history.
     pub total: RampSpec,
+}
+
+/// A dead body load on a deformable body, e.g. gravity: `force = ρ₀ g` per unit reference
+/// volume (unit thickness), scaled by `factor` (default: linear from 0 to 1 over the run).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodyLoadSpec {
+    pub body: String,
+    /// Force per unit reference volume `[bx, by]`.
+    pub force: [f64; 2],
+    /// History of the load factor (a final value reached linearly, or `[[t, factor], …]`).
+    pub factor: Option<RampSpec>,
 }
 
 /// A rigid body: a point, or a surface made of segments and arcs.
