@@ -18,8 +18,7 @@
 //! bytes): on the 40 × 30 mesh the recorded `p(x)` (node force over tributary length)
 //! follows `p0 √(1 − x²/a²)` with `a`, `p0` from Hertz for the recorded total force:
 //! within 2 % of `p0` for `|x| ≤ 0.8 a` (measured 0.60 %, 6 nodes), no pressure beyond
-//! `1.15 a`, and its integral
-//! `Σ p l` equals the total normal force to 1e-12.
+//! `1.15 a`, and its integral `Σ p l` equals the total normal force to 1e-12.
 
 mod common;
 
