@@ -19,7 +19,7 @@ use crate::contact::system::Config;
 use crate::model::{Model, Slave};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// The pressure profile of one contact pair at one increment.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -46,7 +46,8 @@ pub struct PressurePoint {
     /// Contact point `ρ(ξ)` (current configuration).
     #[serde(with = "Real2")]
     pub contact_point: [f64; 2],
-    /// Normal force `N` of the node, its tributary length `l`, and `p = N / l`.
+    /// Normal force `N` of the node, its tributary length `l`, and `p = N / l` (NaN when the
+    /// node is on no face segment joining it to another slave node: `l = 0`).
     #[serde(with = "Real")]
     pub normal_force: f64,
     #[serde(with = "Real")]
@@ -77,9 +78,14 @@ pub fn profiles(
         let Some(nodes) = nodes else { continue };
         let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(i, n)| (*n, i)).collect();
         // tributary lengths from the slave face segments joining two slave nodes
+        // (each segment once, also when it belongs to several named faces)
         let mut tributary = vec![0.0; nodes.len()];
+        let mut seen = HashSet::new();
         for body in &model.bodies {
             for seg in body.faces.values().flatten() {
+                if !seen.insert((seg[0].min(seg[1]), seg[0].max(seg[1]))) {
+                    continue;
+                }
                 if let (Some(&i), Some(&j)) = (index.get(&seg[0]), index.get(&seg[1])) {
                     let (a, b) = (at(seg[0]), at(seg[1]));
                     let half = 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]);
