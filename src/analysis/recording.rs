@@ -5,6 +5,7 @@
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use crate::record::pressure::PressureRecord;
 use crate::record::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
 use mcap::records::Record;
@@ -60,6 +61,8 @@ pub struct Recording {
     pub logs: Vec<LogRecord>,
     /// How the run ended (None: the recording has no outcome message).
     pub outcome: Option<Outcome>,
+    /// Contact pressure profiles (`/pressure`; none in recordings made before the channel).
+    pub pressure: Vec<PressureRecord>,
     /// Message count per topic.
     pub message_counts: BTreeMap<String, u64>,
     pub chunks: usize,
@@ -197,6 +200,7 @@ impl Recording {
             positions: b.positions,
             logs: b.logs,
             outcome: b.outcome,
+            pressure: b.pressure,
             message_counts: b.counts,
             chunks,
         })
@@ -290,6 +294,7 @@ pub(crate) struct Builder {
     pub(crate) positions: Vec<PositionsMessage>,
     pub(crate) logs: Vec<LogRecord>,
     pub(crate) outcome: Option<Outcome>,
+    pub(crate) pressure: Vec<PressureRecord>,
     pub(crate) counts: BTreeMap<String, u64>,
 }
 
@@ -314,6 +319,7 @@ impl Builder {
             schemas::POSITIONS => self.positions.push(parse(topic, seq, data)?),
             schemas::LOG => self.logs.push(parse(topic, seq, data)?),
             schemas::OUTCOME => self.outcome = Some(parse(topic, seq, data)?),
+            schemas::PRESSURE => self.pressure.push(parse(topic, seq, data)?),
             _ => {}
         }
         Ok(())

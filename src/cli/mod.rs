@@ -7,6 +7,7 @@ mod export;
 mod inspect;
 pub(crate) mod out;
 mod plot;
+mod plot_pressure;
 mod progress;
 mod recover;
 mod replay;

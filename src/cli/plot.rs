@@ -18,15 +18,25 @@ pub struct PlotArgs {
     /// Output chart (.svg or .png).
     #[arg(long, short)]
     pub out: PathBuf,
-    #[arg(long, default_value = "Load–displacement")]
-    pub title: String,
-    #[arg(long, default_value = "displacement")]
-    pub x_label: String,
-    #[arg(long, default_value = "force")]
-    pub y_label: String,
+    /// Chart title [default: "Load–displacement", or "Contact pressure" with --pressure].
+    #[arg(long)]
+    pub title: Option<String>,
+    /// [default: "displacement", or "arc length along the master" with --pressure]
+    #[arg(long)]
+    pub x_label: Option<String>,
+    /// [default: "force", or "pressure" with --pressure]
+    #[arg(long)]
+    pub y_label: Option<String>,
     /// Which monitor to draw, by label (default: the scene's first monitor).
     #[arg(long)]
     pub monitor: Option<String>,
+    /// Draw the contact pressure against arc length along the master at this increment (a
+    /// number or `last`) instead of load–displacement curves (MCAP recordings only).
+    #[arg(long, value_name = "INC")]
+    pub pressure: Option<String>,
+    /// With --pressure: only this contact pair.
+    #[arg(long, requires = "pressure")]
+    pub pair: Option<String>,
 }
 
 fn split(spec: &str) -> (String, String) {
@@ -135,13 +145,34 @@ fn read(spec: &str, monitor: Option<&str>) -> anyhow::Result<Series> {
     read_csv(&path, label, monitor)
 }
 
+fn read_pressure(spec: &str, increment: Option<usize>, pair: Option<&str>) -> anyhow::Result<Vec<Series>> {
+    let (path, label) = split(spec);
+    let r = Recording::open(Path::new(&path)).map_err(|e| BadInput(e.to_string()))?;
+    Ok(super::plot_pressure::series(&r, &label, increment, pair)?)
+}
+
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
-    let series = a
-        .runs
-        .iter()
-        .map(|r| read(r, a.monitor.as_deref()))
-        .collect::<anyhow::Result<Vec<_>>>()?;
-    line_chart(&a.out, &a.title, &a.x_label, &a.y_label, &series).map_err(|e| BadInput(e.to_string()))?;
+    let (series, defaults) = match &a.pressure {
+        Some(inc) => {
+            let inc = super::plot_pressure::parse_increment(inc).map_err(|e| BadInput(format!("--pressure: {e}")))?;
+            let mut all = Vec::new();
+            for r in &a.runs {
+                all.extend(read_pressure(r, inc, a.pair.as_deref())?);
+            }
+            (all, ["Contact pressure", "arc length along the master", "pressure"])
+        }
+        None => (
+            (a.runs.iter().map(|r| read(r, a.monitor.as_deref()))).collect::<anyhow::Result<Vec<_>>>()?,
+            ["Load–displacement", "displacement", "force"],
+        ),
+    };
+    let pick = |o: &Option<String>, d: &str| o.clone().unwrap_or_else(|| d.to_string());
+    let (title, x, y) = (
+        pick(&a.title, defaults[0]),
+        pick(&a.x_label, defaults[1]),
+        pick(&a.y_label, defaults[2]),
+    );
+    line_chart(&a.out, &title, &x, &y, &series).map_err(|e| BadInput(e.to_string()))?;
     outln!("written {}", a.out.display())?;
     Ok(ExitCode::SUCCESS)
 }

@@ -10,6 +10,7 @@
 
 use super::atomic_file::{AtomicFile, FirstError, Guarded};
 use super::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use super::pressure::{profiles, PressureRecord};
 use super::schemas::{self, CHANNELS};
 use super::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use crate::model::Model;
@@ -22,7 +23,8 @@ use std::time::{Instant, SystemTime, UNIX_EPOCH};
 /// Options of the MCAP recorder.
 #[derive(Debug, Clone)]
 pub struct McapOptions {
-    /// Write node positions every N-th increment (and always the last one); 1 = every one.
+    /// Write node positions and contact pressure profiles every N-th increment (and always the
+    /// last one); 1 = every one.
     pub positions_every: usize,
     /// zstd compression of the chunks (on by default; off only for debugging).
     pub compress: bool,
@@ -61,6 +63,8 @@ pub struct McapSink<W: Write + Seek> {
     buf: Vec<u8>,
     /// Positions of the last increment when they were thinned away (written at `finish`).
     pending_positions: Option<PositionsMessage>,
+    /// Pressure profiles of the last increment when they were thinned away (likewise).
+    pending_pressure: Vec<PressureRecord>,
 }
 
 /// Called at `finish` with the output and whether everything was written.
@@ -131,6 +135,7 @@ impl<W: Write + Seek> McapSink<W> {
             started: Instant::now(),
             buf: Vec::with_capacity(4096),
             pending_positions: None,
+            pending_pressure: Vec::new(),
         })
     }
 
@@ -280,11 +285,17 @@ impl<W: Write + Seek> Observer for McapSink<W> {
             self.put(schemas::CROSSING, &msg)?;
         }
         let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
+        let pressure = profiles(view.model, view.u, rec.t, rec.increment, view.contact);
         if rec.increment.is_multiple_of(self.opts.positions_every.max(1)) {
             self.pending_positions = None;
+            self.pending_pressure.clear();
+            for p in &pressure {
+                self.put(schemas::PRESSURE, p)?;
+            }
             self.put(schemas::POSITIONS, &positions)
         } else {
             self.pending_positions = Some(positions);
+            self.pending_pressure = pressure;
             Ok(())
         }
     }
@@ -295,8 +306,11 @@ impl<W: Write + Seek> Observer for McapSink<W> {
 
     fn finish(&mut self, outcome: &Outcome) -> Result<(), ObserverError> {
         let mut first = Ok(());
+        for p in std::mem::take(&mut self.pending_pressure) {
+            first = first.and(self.put(schemas::PRESSURE, &p));
+        }
         if let Some(p) = self.pending_positions.take() {
-            first = self.put(schemas::POSITIONS, &p);
+            first = first.and(self.put(schemas::POSITIONS, &p));
         }
         let r = self.put(schemas::OUTCOME, outcome);
         first = first.and(r);

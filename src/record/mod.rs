@@ -9,6 +9,7 @@ pub mod jsonl;
 pub mod mcap_sink;
 pub mod messages;
 mod observer;
+pub mod pressure;
 pub mod real;
 mod rerun_curve;
 pub mod rerun_sink;

@@ -4,6 +4,7 @@
 //! rewrites those files; the test fails when they and the types disagree).
 
 use super::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use super::pressure::PressureRecord;
 use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use std::path::Path;
 
@@ -37,6 +38,7 @@ pub const CROSSING: &str = "/crossing";
 pub const POSITIONS: &str = "/positions";
 pub const LOG: &str = "/log";
 pub const OUTCOME: &str = "/outcome";
+pub const PRESSURE: &str = "/pressure";
 
 /// MCAP header profile of a contrail recording.
 pub const PROFILE: &str = "contrail";
@@ -102,6 +104,13 @@ pub const CHANNELS: &[ChannelSpec] = &[
         file: "outcome.schema.json",
         description: "how the run ended: completed, failed (where, why, last residuals) or interrupted (last message)",
         schema: || schemars::schema_for!(Outcome),
+    },
+    ChannelSpec {
+        topic: PRESSURE,
+        schema_name: "contrail.Pressure",
+        file: "pressure.schema.json",
+        description: "contact pressure against arc length along the master, one per node-slave pair, at the increments that have /positions",
+        schema: || schemars::schema_for!(PressureRecord),
     },
 ];
 
