@@ -60,7 +60,10 @@ fn body_load_cantilever_under_self_weight_matches_beam_theory() {
     );
     let (summary, _) = common::solve_ok(&model);
     let tip = summary.monitor.unwrap().displacement;
-    println!("tip deflection {tip:.6} against q L^4 / (8 EI) = {w:.6} ({:+.3} %)", 100.0 * (tip / w - 1.0));
+    println!(
+        "tip deflection {tip:.6} against q L^4 / (8 EI) = {w:.6} ({:+.3} %)",
+        100.0 * (tip / w - 1.0)
+    );
     assert!((tip / w - 1.0).abs() < 0.01, "{tip} vs {w}");
 }
 

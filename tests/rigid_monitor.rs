@@ -1,10 +1,10 @@
 //! Several monitors per scene, and monitors of rigid bodies.
 //!
-//! A rigid monitor reports the body's prescribed travel and the sum of the contact forces it
-//! receives. By equilibrium of the deformable body (its only other forces are the reactions
-//! of its prescribed nodes), that sum equals the total reaction `R` of the deformable body's
-//! prescribed DOFs: the contact force on the body is `−R`, and the rigid body receives its
-//! opposite. Checked at every converged increment to `1e-6 · max |R|` over the run (the runs
+//! A rigid monitor reports the body's prescribed travel and the force its drive applies (the
+//! reaction of the prescribed motion), the negative of the contact forces it receives. By
+//! equilibrium of the deformable body (its only other forces are the reactions of its
+//! prescribed nodes), the contact force it receives equals the total reaction `R` of the
+//! deformable body's prescribed DOFs, so the drive's force is `−R`. Checked at every converged increment to `1e-6 · max |R|` over the run (the runs
 //! converge to `‖R_free‖ ≤ 1e-9 F_ref` or tighter), for
 //! - `block-slide` (rigid plane as master, friction, stick then slip),
 //! - `hertz` (rigid arc as master, frictionless, x and y),
@@ -23,7 +23,7 @@ fn by_label<'a>(inc: &'a IncrementRecord, label: &str) -> &'a MonitorRecord {
         .unwrap_or_else(|| panic!("no monitor {label} at increment {}", inc.increment))
 }
 
-/// Largest `|F − R|` over the run, relative to the largest `|R|`, for monitor `label` against
+/// Largest `|F + R|` over the run, relative to the largest `|R|`, for monitor `label` against
 /// the reaction component `c`, with the sign `sign` of the monitor.
 fn equilibrium_error(mem: &Memory, label: &str, c: usize, sign: f64) -> f64 {
     let scale = (mem.increments.iter())
@@ -31,7 +31,7 @@ fn equilibrium_error(mem: &Memory, label: &str, c: usize, sign: f64) -> f64 {
         .fold(0.0, f64::max);
     assert!(scale > 0.0, "no reaction in component {c}");
     (mem.increments.iter())
-        .map(|i| (sign * by_label(i, label).force - i.reaction_total[c]).abs() / scale)
+        .map(|i| (sign * by_label(i, label).force + i.reaction_total[c]).abs() / scale)
         .fold(0.0, f64::max)
 }
 
@@ -88,12 +88,13 @@ sign = -1.0
     let ey = equilibrium_error(&mem, "plane-y", 1, -1.0);
     println!("block-slide: plane force against the reactions: x {ex:.2e}, y {ey:.2e} (relative)");
     assert!(ex < 1e-6 && ey < 1e-6, "x {ex:e}, y {ey:e}");
-    // the drag is resisted by friction: the plane is pulled along +x, pressed down
+    // the drag is resisted by friction: the plane is pulled along +x and pressed down, so
+    // its drive holds it with a force along −x and (with sign = −1) up
     let last = mem.increments.last().unwrap();
-    assert!(by_label(last, "plane-x").force > 0.0);
+    assert!(by_label(last, "plane-x").force < 0.0);
     assert!(
-        by_label(last, "plane-y").force > 0.0,
-        "sign = −1 reports the push down as positive"
+        by_label(last, "plane-y").force < 0.0,
+        "the drive pushes the plane up; sign = −1 reports that as negative"
     );
 }
 
@@ -130,7 +131,7 @@ component = "y"
         );
         let base = by_label(inc, "base").force;
         assert!(
-            (punch.force - base).abs() <= 1e-6 * base.abs(),
+            (punch.force + base).abs() <= 1e-6 * base.abs(),
             "increment {}: punch {} base {base}",
             inc.increment,
             punch.force
@@ -141,8 +142,8 @@ component = "y"
     println!("hertz: cylinder force against the reactions: x {ex:.2e}, y {ey:.2e} (relative)");
     assert!(ex < 1e-6 && ey < 1e-6, "x {ex:e}, y {ey:e}");
     assert!(
-        by_label(mem.increments.last().unwrap(), "punch").force > 0.0,
-        "the block pushes the cylinder up"
+        by_label(mem.increments.last().unwrap(), "punch").force < 0.0,
+        "the drive pushes the cylinder down (travel and force both negative)"
     );
 }
 
@@ -258,8 +259,8 @@ fn every_monitor_is_a_csv_column_and_plot_picks_one() {
     assert_eq!(last[2], last[10]);
     assert_eq!(last[3], last[11]);
     assert!(
-        (last[3] + last[13]).abs() <= 1e-6 * last[13].abs(),
-        "punch = −base: {last:?}"
+        (last[3] - last[13]).abs() <= 1e-6 * last[13].abs() && last[3] > 0.0,
+        "punch pressed down with sign = −1 = base reaction, both positive: {last:?}"
     );
     assert!(std::fs::metadata(p("r.rrd")).unwrap().len() > 1000);
     for (input, monitor) in [("r.csv", "punch"), ("r.mcap", "punch"), ("r.mcap", "base, y")] {

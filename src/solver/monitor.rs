@@ -3,7 +3,10 @@
 //! - A node set: the mean displacement of its nodes in the monitored direction and the sum of
 //!   the forces on them (the reaction where the DOF is prescribed, the applied load elsewhere).
 //! - A rigid body: its prescribed travel (the motion law at `t`, i.e. the translation from
-//!   its scene position) and the sum of the contact forces it *receives* in that direction,
+//!   its scene position) and the force its drive applies to hold that travel — the
+//!   reaction of the prescribed motion, as for a node set's prescribed DOFs, so that a punch
+//!   pressed down with `sign = −1` plots in the first quadrant. It is the negative of the sum
+//!   of the contact forces the body *receives* in that direction,
 //!   taken from the contact point snapshots of the converged state: a slave point of a pair
 //!   receives `f = N n + T τ` (normal force along the master's outward normal, returned
 //!   tangential traction along the unit tangent); the master of that pair receives `−f`
@@ -53,7 +56,8 @@ fn record(model: &Model, m: &Monitor, asm: &Assembler, u: &[f64], t: f64, points
         }
         MonitorTarget::Rigid(r) => {
             let travel = model.rigid[*r].offset(t)[m.component];
-            (travel, rigid_contact_force(model, *r, points)[m.component])
+            // the drive's force: the negative of the contact force received
+            (travel, -rigid_contact_force(model, *r, points)[m.component])
         }
     };
     MonitorRecord {
