@@ -14,7 +14,7 @@ import sys
 import jsonschema
 from mcap.reader import make_reader
 
-TOPICS = {"/model", "/increment", "/iteration", "/contact", "/crossing", "/positions", "/log", "/outcome"}
+TOPICS = {"/model", "/increment", "/iteration", "/contact", "/crossing", "/positions", "/pressure", "/log", "/outcome"}
 
 
 def reject_constant(name):
