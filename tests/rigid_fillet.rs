@@ -67,7 +67,17 @@ increments = 200
 
 #[test]
 fn rigid_fillet_nodes_leave_the_step_over_the_rounded_corner() {
-    let model = common::scene_text(SCENE);
+    // the scene as written, and refined once in mesh and step
+    let refined = SCENE
+        .replace("elements = [2, 1]", "elements = [4, 2]")
+        .replace("increments = 200", "increments = 400");
+    for text in [SCENE.to_string(), refined] {
+        fillet_pass(&text);
+    }
+}
+
+fn fillet_pass(text: &str) {
+    let model = common::scene_text(text);
     let eps_n = model.model.contacts[0].law.eps_n;
     let (summary, mem) = common::solve_ok(&model);
     assert!(matches!(mem.outcome, Some(Outcome::Completed { .. })));

@@ -5,29 +5,18 @@
 //! thickness in plane strain). A dead load in the total Lagrangian description does not
 //! depend on the deformation, so these are constant nodal forces.
 
-const G: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
-const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+use super::quad::{dn_dxi, jacobian, GAUSS, XI_NODES};
 
 /// Nodal forces `[f1x, f1y, f2x, …]` of the body force `b` on the quad with reference nodes
-/// `x` (counter-clockwise).
+/// `x` (counter-clockwise), with the element kernel's shape functions and Gauss points.
 pub fn quad_body_force(x: &[[f64; 2]; 4], b: [f64; 2], out: &mut [f64; 8]) {
     out.fill(0.0);
-    for (gx, gy) in [(-G, -G), (G, -G), (G, G), (-G, G)] {
-        let mut n = [0.0; 4];
-        let mut j = [[0.0; 2]; 2]; // J_ab = ∂X_a/∂ξ_b
+    for &(gx, gy) in &GAUSS {
+        let det = jacobian(x, &dn_dxi(gx, gy)).determinant();
         for (i, &(xa, ea)) in XI_NODES.iter().enumerate() {
-            n[i] = 0.25 * (1.0 + xa * gx) * (1.0 + ea * gy);
-            let d = [0.25 * xa * (1.0 + ea * gy), 0.25 * ea * (1.0 + xa * gx)];
-            for a in 0..2 {
-                for c in 0..2 {
-                    j[a][c] += x[i][a] * d[c];
-                }
-            }
-        }
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        for i in 0..4 {
-            out[2 * i] += n[i] * b[0] * det;
-            out[2 * i + 1] += n[i] * b[1] * det;
+            let n = 0.25 * (1.0 + xa * gx) * (1.0 + ea * gy);
+            out[2 * i] += n * b[0] * det;
+            out[2 * i + 1] += n * b[1] * det;
         }
     }
 }

@@ -61,12 +61,12 @@ type Mat88 = SMatrix<f64, 8, 8>;
 type Mat84 = SMatrix<f64, 8, 4>;
 type Mat44 = SMatrix<f64, 4, 4>;
 
-const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+pub(crate) const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
 const G: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
-const GAUSS: [(f64, f64); 4] = [(-G, -G), (G, -G), (G, G), (-G, G)];
+pub(crate) const GAUSS: [(f64, f64); 4] = [(-G, -G), (G, -G), (G, G), (-G, G)];
 
 /// Shape-function derivatives with respect to `(ξ, η)`: `[[∂N_I/∂ξ], [∂N_I/∂η]]`.
-fn dn_dxi(xi: f64, eta: f64) -> [[f64; 4]; 2] {
+pub(crate) fn dn_dxi(xi: f64, eta: f64) -> [[f64; 4]; 2] {
     let mut d = [[0.0; 4]; 2];
     for (i, &(xa, ea)) in XI_NODES.iter().enumerate() {
         d[0][i] = 0.25 * xa * (1.0 + ea * eta);
@@ -76,7 +76,7 @@ fn dn_dxi(xi: f64, eta: f64) -> [[f64; 4]; 2] {
 }
 
 /// Jacobian `J_ab = ∂X_a/∂ξ_b`.
-fn jacobian(x: &[[f64; 2]; 4], d: &[[f64; 4]; 2]) -> Matrix2<f64> {
+pub(crate) fn jacobian(x: &[[f64; 2]; 4], d: &[[f64; 4]; 2]) -> Matrix2<f64> {
     let mut j = Matrix2::zeros();
     for i in 0..4 {
         for a in 0..2 {
