@@ -1,6 +1,7 @@
 //! Global assembly: DOF numbering (prescribed DOFs eliminated), element and contact
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
+pub mod band;
 pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};

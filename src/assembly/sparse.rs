@@ -2,6 +2,7 @@
 //! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
 //! factorisation (faer) is reused until the pattern changes.
 
+use super::band::{reverse_cuthill_mckee, BandLu};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
@@ -15,6 +16,70 @@ pub enum LinearError {
     Factorization(String),
     #[error("linear solve produced non-finite values")]
     NonFinite,
+    #[error(transparent)]
+    Band(#[from] super::band::ZeroPivot),
+}
+
+/// Which direct solver factorises the matrix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearSolver {
+    /// Banded LU after reverse Cuthill–McKee when the band is narrow, faer's sparse LU
+    /// otherwise (default).
+    Auto,
+    /// Always faer's sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`, for comparisons).
+    Sparse,
+}
+
+impl LinearSolver {
+    /// The choice from the environment variable `CONTRAIL_LINEAR_SOLVER` (`sparse` or
+    /// `auto`; anything else means `auto`): a diagnostic switch for benchmarks, not a setting
+    /// of a study (both solvers give the same solution to round-off).
+    pub fn from_env() -> Self {
+        match std::env::var("CONTRAIL_LINEAR_SOLVER").as_deref() {
+            Ok("sparse") => LinearSolver::Sparse,
+            _ => LinearSolver::Auto,
+        }
+    }
+}
+
+/// The banded factorisation of a pattern: RCM permutation and the band slot of each stored
+/// entry.
+struct BandPlan {
+    lu: BandLu,
+    /// `perm[new] = old`
+    perm: Vec<usize>,
+    /// band slot of `values[k]`
+    slots: Vec<usize>,
+    rhs: Vec<f64>,
+}
+
+impl BandPlan {
+    /// A plan if the RCM-ordered pattern has a narrow band (see [`BandLu::worth_it`]).
+    fn new(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
+        let perm = reverse_cuthill_mckee(n, col_ptr, row_idx);
+        let mut inv = vec![0; n];
+        for (new, &old) in perm.iter().enumerate() {
+            inv[old] = new;
+        }
+        let entries = || (0..n).flat_map(|c| row_idx[col_ptr[c]..col_ptr[c + 1]].iter().map(move |&r| (r, c)));
+        let (mut kl, mut ku) = (0, 0);
+        for (r, c) in entries() {
+            let (i, j) = (inv[r], inv[c]);
+            kl = kl.max(i.saturating_sub(j));
+            ku = ku.max(j.saturating_sub(i));
+        }
+        if !BandLu::worth_it(n, kl.max(ku)) {
+            return None;
+        }
+        let lu = BandLu::new(n, kl, ku);
+        let slots = entries().map(|(r, c)| lu.slot(inv[r], inv[c])).collect();
+        Some(BandPlan {
+            lu,
+            perm,
+            slots,
+            rhs: vec![0.0; n],
+        })
+    }
 }
 
 /// Square sparse matrix with a fixed pattern.
@@ -32,6 +97,10 @@ pub struct SparseMatrix {
     numeric: NumericLu<usize, f64>,
     scratch: MemBuffer,
     rhs: Mat<f64>,
+    solver: LinearSolver,
+    /// Banded factorisation of the current pattern, when it pays (decided once per pattern).
+    band: Option<BandPlan>,
+    band_decided: bool,
     /// Number of symbolic factorisations performed (pattern changes + 1).
     pub symbolic_factorizations: usize,
     /// Numeric factorisations performed, and the time spent in them (symbolic analyses
@@ -66,6 +135,9 @@ impl SparseMatrix {
             numeric: NumericLu::new(),
             scratch: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
             rhs: Mat::zeros(0, 1),
+            solver: LinearSolver::from_env(),
+            band: None,
+            band_decided: false,
             symbolic_factorizations: 0,
             factorizations: 0,
             factor_time: Duration::ZERO,
@@ -88,6 +160,20 @@ impl SparseMatrix {
         self.values = vec![0.0; self.row_idx.len()];
         self.symbolic = None;
         self.lu_symbolic = None;
+        self.band = None;
+        self.band_decided = false;
+    }
+
+    /// Choose the direct solver (resets the factorisation).
+    pub fn set_solver(&mut self, solver: LinearSolver) {
+        self.solver = solver;
+        self.band = None;
+        self.band_decided = false;
+    }
+
+    /// The half-bandwidths `(kl, ku)` of the banded factorisation in use, if one is.
+    pub fn band_widths(&self) -> Option<(usize, usize)> {
+        self.band.as_ref().map(|b| (b.lu.kl, b.lu.ku))
     }
 
     pub fn nnz(&self) -> usize {
@@ -130,11 +216,45 @@ impl SparseMatrix {
         }
     }
 
-    /// Solve `A x = b` in place (LU with partial pivoting, symbolic analysis reused).
-    /// Sequential below [`PARALLEL_FROM`] unknowns (threads cost more than they save on
-    /// small systems), faer's global parallelism above.
+    /// Solve `A x = b` in place (LU with partial pivoting, ordering and symbolic analysis
+    /// reused while the pattern is unchanged): a banded LU after reverse Cuthill–McKee when
+    /// the band is narrow (see [`super::band`]), otherwise faer's sparse LU, sequential below
+    /// [`PARALLEL_FROM`] unknowns (threads cost more than they save on small systems) and with
+    /// faer's global parallelism above.
     pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
         let started = Instant::now();
+        if !self.band_decided {
+            self.band_decided = true;
+            if self.solver == LinearSolver::Auto {
+                self.band = BandPlan::new(self.n, &self.col_ptr, &self.row_idx);
+                if self.band.is_some() {
+                    self.symbolic_factorizations += 1;
+                }
+            }
+        }
+        if let Some(plan) = self.band.as_mut() {
+            plan.lu.clear();
+            for (&s, &v) in plan.slots.iter().zip(&self.values) {
+                plan.lu.add(s, v);
+            }
+            let factored = plan.lu.factorize();
+            self.factorizations += 1;
+            let done = Instant::now();
+            self.factor_time += done - started;
+            factored?;
+            for (r, &old) in plan.rhs.iter_mut().zip(&plan.perm) {
+                *r = b[old];
+            }
+            plan.lu.solve(&mut plan.rhs);
+            for (r, &old) in plan.rhs.iter().zip(&plan.perm) {
+                b[old] = *r;
+            }
+            self.solve_time += done.elapsed();
+            if b.iter().any(|v| !v.is_finite()) {
+                return Err(LinearError::NonFinite);
+            }
+            return Ok(());
+        }
         let par = if self.n < PARALLEL_FROM {
             Par::Seq
         } else {
@@ -239,5 +359,55 @@ mod tests {
         a.solve(&mut b).unwrap();
         assert_eq!(a.symbolic_factorizations, 1);
         assert!((b[1] + 2.0).abs() < 1e-14);
+    }
+
+    /// A strip of quads numbered along its length (wide band before reordering), with
+    /// unsymmetric values: the banded and the sparse LU give the same solution.
+    #[test]
+    fn banded_and_sparse_lu_agree_on_a_strip() {
+        let (nx, ny) = (30, 3);
+        let node = |i: usize, j: usize| j * (nx + 1) + i;
+        let mut groups = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
+                groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
+            }
+        }
+        let n = 2 * (nx + 1) * (ny + 1);
+        let fill = |a: &mut SparseMatrix| {
+            for c in 0..n {
+                for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+                    let r = a.row_idx[k];
+                    a.values[k] = if r == c {
+                        8.0
+                    } else {
+                        ((3 * r + 7 * c) % 11) as f64 / 11.0 - 0.5
+                    };
+                }
+            }
+        };
+        let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
+        let mut solutions = Vec::new();
+        for solver in [LinearSolver::Auto, LinearSolver::Sparse] {
+            let mut a = SparseMatrix::new(n, &mut groups.clone().into_iter());
+            a.set_solver(solver);
+            fill(&mut a);
+            let mut b = vec![0.0; n];
+            a.mul(&x, &mut b);
+            a.solve(&mut b).unwrap();
+            assert_eq!(a.band_widths().is_some(), solver == LinearSolver::Auto);
+            if let Some((kl, ku)) = a.band_widths() {
+                assert!(
+                    kl <= 20 && ku <= 20,
+                    "band ({kl}, {ku}) after RCM (column-wise numbering: 11)"
+                );
+            }
+            solutions.push(b);
+        }
+        for (i, xi) in x.iter().enumerate() {
+            assert!((solutions[0][i] - xi).abs() < 1e-12, "band x[{i}]");
+            assert!((solutions[1][i] - xi).abs() < 1e-12, "sparse x[{i}]");
+        }
     }
 }

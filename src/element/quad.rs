@@ -28,7 +28,7 @@
 //! as the reference that shows why the enhancement is there).
 
 use super::material::{Material, MaterialError};
-use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{Matrix2, Matrix3, Matrix4, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// Which quadrilateral formulation an element uses.
@@ -54,12 +54,6 @@ pub enum ElementError {
     #[error("enhanced-strain parameters did not converge (|R_α| = {0:.3e})")]
     EasNotConverged(f64),
 }
-
-type Mat38 = SMatrix<f64, 3, 8>;
-type Mat34 = SMatrix<f64, 3, 4>;
-type Mat88 = SMatrix<f64, 8, 8>;
-type Mat84 = SMatrix<f64, 8, 4>;
-type Mat44 = SMatrix<f64, 4, 4>;
 
 pub(crate) const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
 const G: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
@@ -95,8 +89,8 @@ struct GaussGeom {
     grad: [[f64; 4]; 2],
     /// `j · w` (weights are 1 for 2×2 Gauss)
     dv: f64,
-    /// `Ẽ = G α`
-    g: Mat34,
+    /// `Ẽ = G α` (3×4, zero for [`ElementKind::Q4`])
+    g: [[f64; 4]; 3],
 }
 
 /// Reference geometry of one quadrilateral at its four Gauss points: shape-function
@@ -145,13 +139,16 @@ impl QuadGeometry {
                     grad[a2][i] = d[0][i] * jinv[(0, a2)] + d[1][i] * jinv[(1, a2)];
                 }
             }
-            let g = match kind {
-                ElementKind::Q4 => Mat34::zeros(),
-                ElementKind::Q4Eas | ElementKind::Q4EasStab => {
-                    let m = Mat34::new(xi, 0.0, 0.0, 0.0, 0.0, eta, 0.0, 0.0, 0.0, 0.0, xi, eta);
-                    (det0 / det) * t0 * m
+            let mut g = [[0.0; 4]; 3];
+            if kind != ElementKind::Q4 {
+                // (j₀/j) T₀ M with M = [[ξ,0,0,0],[0,η,0,0],[0,0,ξ,η]]
+                let m = [[xi, 0.0, 0.0, 0.0], [0.0, eta, 0.0, 0.0], [0.0, 0.0, xi, eta]];
+                for (a, row) in g.iter_mut().enumerate() {
+                    for (c, v) in row.iter_mut().enumerate() {
+                        *v = (det0 / det) * (0..3).map(|b| t0[(a, b)] * m[b][c]).sum::<f64>();
+                    }
                 }
-            };
+            }
             Ok(GaussGeom { grad, dv: det, g })
         };
         Ok(QuadGeometry {
@@ -160,38 +157,47 @@ impl QuadGeometry {
     }
 }
 
-/// Deformation gradient and strain–displacement matrix at one Gauss point.
+/// Strain–displacement matrix and compatible Green–Lagrange strain at one Gauss point, from
+/// `F_ab = δ_ab + Σ_I u_Ia ∂N_I/∂X_b`.
+#[derive(Clone, Copy)]
 struct GaussKin {
-    f: Matrix2<f64>,
-    /// `δE_c = B δu`
-    b: Mat38,
+    /// `δE_c = B δu` (rows: `E11, E22, 2E12`; columns: local DOFs `[u1x, u1y, u2x, …]`)
+    b: [[f64; 8]; 3],
+    /// `E_c = ½ (FᵀF − I)` in Voigt form with engineering shear
+    ec: [f64; 3],
 }
 
 fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
     let grad = &geo.grad;
-    let mut f = Matrix2::identity();
-    for i in 0..4 {
-        for r in 0..2 {
-            for c in 0..2 {
-                f[(r, c)] += u[i][r] * grad[c][i];
-            }
+    let mut f = [[1.0, 0.0], [0.0, 1.0]];
+    for (i, ui) in u.iter().enumerate() {
+        for (r, fr) in f.iter_mut().enumerate() {
+            fr[0] += ui[r] * grad[0][i];
+            fr[1] += ui[r] * grad[1][i];
         }
     }
-    let mut b = Mat38::zeros();
+    let mut b = [[0.0; 8]; 3];
     for i in 0..4 {
         let (n1, n2) = (grad[0][i], grad[1][i]);
         for r in 0..2 {
-            b[(0, 2 * i + r)] = f[(r, 0)] * n1;
-            b[(1, 2 * i + r)] = f[(r, 1)] * n2;
-            b[(2, 2 * i + r)] = f[(r, 0)] * n2 + f[(r, 1)] * n1;
+            b[0][2 * i + r] = f[r][0] * n1;
+            b[1][2 * i + r] = f[r][1] * n2;
+            b[2][2 * i + r] = f[r][0] * n2 + f[r][1] * n1;
         }
     }
-    GaussKin { f, b }
+    let c11 = f[0][0] * f[0][0] + f[1][0] * f[1][0];
+    let c22 = f[0][1] * f[0][1] + f[1][1] * f[1][1];
+    let c12 = f[0][0] * f[0][1] + f[1][0] * f[1][1];
+    GaussKin {
+        b,
+        ec: [0.5 * (c11 - 1.0), 0.5 * (c22 - 1.0), c12],
+    }
 }
 
-fn green_lagrange(f: &Matrix2<f64>) -> Vector3<f64> {
-    let c = f.transpose() * f;
-    Vector3::new(0.5 * (c[(0, 0)] - 1.0), 0.5 * (c[(1, 1)] - 1.0), c[(0, 1)])
+/// `Ẽ = G α` at one Gauss point.
+fn enhanced(g: &[[f64; 4]; 3], al: &[f64; 4]) -> [f64; 3] {
+    let row = |r: &[f64; 4]| r[0] * al[0] + r[1] * al[1] + r[2] * al[2] + r[3] * al[3];
+    [row(&g[0]), row(&g[1]), row(&g[2])]
 }
 
 /// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness
@@ -209,6 +215,122 @@ pub fn quad_residual_tangent(
     quad_residual_tangent_with(kind, material, &geo, u, alpha, r, k)
 }
 
+/// Sums of one pass over the Gauss points (upper triangles of the symmetric blocks).
+struct Sums {
+    ru: [f64; 8],
+    kuu: [[f64; 8]; 8],
+    kua: [[f64; 4]; 8],
+    kaa: [[f64; 4]; 4],
+    ra: [f64; 4],
+    energy: f64,
+    /// `max_q ‖D_q‖ dv_q`, the scale of `K_αα` for the convergence test
+    scale: f64,
+}
+
+impl Sums {
+    fn new() -> Self {
+        Sums {
+            ru: [0.0; 8],
+            kuu: [[0.0; 8]; 8],
+            kua: [[0.0; 4]; 8],
+            kaa: [[0.0; 4]; 4],
+            ra: [0.0; 4],
+            energy: 0.0,
+            scale: 0.0,
+        }
+    }
+}
+
+/// One pass over the Gauss points at the enhanced parameters `al`: `R_α`, `K_αα` always
+/// (when `eas`), and with `full` also `R_u`, `K_uα`, the energy and (with `want_k`) `K_uu`
+/// (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
+fn gauss_pass(
+    material: &Material,
+    geo: &QuadGeometry,
+    kin: &[GaussKin; 4],
+    al: &[f64; 4],
+    eas: bool,
+    full: bool,
+    want_k: bool,
+) -> Result<Sums, ElementError> {
+    let mut t = Sums::new();
+    for (gq, kq) in geo.gp.iter().zip(kin) {
+        let dv = gq.dv;
+        let en = enhanced(&gq.g, al);
+        let e = Vector3::new(kq.ec[0] + en[0], kq.ec[1] + en[1], kq.ec[2] + en[2]);
+        let (s, d) = material.stress_tangent(&e)?;
+        let b = &kq.b;
+        if eas {
+            let g = &gq.g;
+            // D G (3×4)
+            let mut dg = [[0.0; 4]; 3];
+            for (a, row) in dg.iter_mut().enumerate() {
+                for (m, v) in row.iter_mut().enumerate() {
+                    *v = d[(a, 0)] * g[0][m] + d[(a, 1)] * g[1][m] + d[(a, 2)] * g[2][m];
+                }
+            }
+            for m in 0..4 {
+                t.ra[m] += dv * (g[0][m] * s[0] + g[1][m] * s[1] + g[2][m] * s[2]);
+                for n in m..4 {
+                    t.kaa[m][n] += dv * (g[0][m] * dg[0][n] + g[1][m] * dg[1][n] + g[2][m] * dg[2][n]);
+                }
+            }
+            t.scale = t.scale.max(d.norm() * dv);
+            if full {
+                for (i, row) in t.kua.iter_mut().enumerate() {
+                    for (m, v) in row.iter_mut().enumerate() {
+                        *v += dv * (b[0][i] * dg[0][m] + b[1][i] * dg[1][m] + b[2][i] * dg[2][m]);
+                    }
+                }
+            }
+        }
+        if !full {
+            continue;
+        }
+        t.energy += material.energy(&e)? * dv;
+        for (i, v) in t.ru.iter_mut().enumerate() {
+            *v += dv * (b[0][i] * s[0] + b[1][i] * s[1] + b[2][i] * s[2]);
+        }
+        if want_k {
+            let mut db = [[0.0; 8]; 3];
+            for (a, row) in db.iter_mut().enumerate() {
+                for (i, v) in row.iter_mut().enumerate() {
+                    *v = d[(a, 0)] * b[0][i] + d[(a, 1)] * b[1][i] + d[(a, 2)] * b[2][i];
+                }
+            }
+            for i in 0..8 {
+                for j in i..8 {
+                    t.kuu[i][j] += dv * (b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j]);
+                }
+            }
+            // geometric stiffness on the node pairs I ≤ J
+            let gr = &gq.grad;
+            for ni in 0..4 {
+                let sgx = dv * (s[0] * gr[0][ni] + s[2] * gr[1][ni]);
+                let sgy = dv * (s[2] * gr[0][ni] + s[1] * gr[1][ni]);
+                for nj in ni..4 {
+                    let v = sgx * gr[0][nj] + sgy * gr[1][nj];
+                    t.kuu[2 * ni][2 * nj] += v;
+                    t.kuu[2 * ni + 1][2 * nj + 1] += v;
+                }
+            }
+        }
+    }
+    Ok(t)
+}
+
+/// `K_αα⁻¹` from its upper triangle.
+fn kaa_inverse(kaa: &[[f64; 4]; 4]) -> Option<Matrix4<f64>> {
+    let mut m = Matrix4::zeros();
+    for i in 0..4 {
+        for j in i..4 {
+            m[(i, j)] = kaa[i][j];
+            m[(j, i)] = kaa[i][j];
+        }
+    }
+    m.try_inverse()
+}
+
 /// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness,
 /// on its precomputed reference geometry.
 ///
@@ -222,7 +344,8 @@ pub fn quad_residual_tangent(
 /// The local Newton iteration on `α` evaluates only `R_α`, `K_αα` in its first pass; every
 /// later pass also evaluates `R_u`, `K_uu`, `K_uα`, so the pass that finds `R_α` converged
 /// is the one whose condensed residual and tangent are returned (two passes over the Gauss
-/// points for St. Venant–Kirchhoff from any starting `α`).
+/// points for St. Venant–Kirchhoff from any starting `α`). The symmetric blocks (`K_uu`,
+/// `K_αα`, and the condensed `K*`) are summed on their upper triangles and mirrored.
 ///
 /// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
 /// global residual is `r − f_ext`.
@@ -235,107 +358,82 @@ pub fn quad_residual_tangent_with(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
+    if kind == ElementKind::Q4EasStab {
+        return stabilised(material, geo, u, alpha, r, k);
+    }
     let kin = [
         kinematics(&geo.gp[0], u),
         kinematics(&geo.gp[1], u),
         kinematics(&geo.gp[2], u),
         kinematics(&geo.gp[3], u),
     ];
-    let ec: [Vector3<f64>; 4] = [
-        green_lagrange(&kin[0].f),
-        green_lagrange(&kin[1].f),
-        green_lagrange(&kin[2].f),
-        green_lagrange(&kin[3].f),
-    ];
-    if kind == ElementKind::Q4EasStab {
-        return stabilised(material, geo, u, alpha, r, k);
-    }
     let eas = kind == ElementKind::Q4Eas;
-    let mut al = SVector::<f64, 4>::from_column_slice(alpha);
-    if !eas {
-        al.fill(0.0);
-    }
+    let mut al = if eas { *alpha } else { [0.0; 4] };
     let want_k = k.is_some();
-    let mut ru = SVector::<f64, 8>::zeros();
-    let mut kuu = Mat88::zeros();
-    let mut kua = Mat84::zeros();
-    let mut kaa = Mat44::zeros();
-    let mut ra = SVector::<f64, 4>::zeros();
-    let mut energy = 0.0;
+    let norm4 = |v: &[f64; 4]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let mut last_step = false;
     // Local Newton on α (one step is exact for linear S(E)); the displacement terms are
     // evaluated from the second pass on (a pass at a converged α is the last one).
-    for it in 0..=25 {
+    let mut it = 0;
+    let (mut t, inv) = loop {
         let full = !eas || it > 0;
-        kaa.fill(0.0);
-        ra.fill(0.0);
-        if full {
-            ru.fill(0.0);
-            kuu.fill(0.0);
-            kua.fill(0.0);
-            energy = 0.0;
-        }
-        let mut scale = 0.0f64;
-        for (q, (g, kq)) in geo.gp.iter().zip(&kin).enumerate() {
-            let e = ec[q] + g.g * al;
-            let (s, d) = material.stress_tangent(&e)?;
-            if eas {
-                ra += g.g.transpose() * s * g.dv;
-                let dg = d * g.g;
-                kaa += g.g.transpose() * dg * g.dv;
-                scale = scale.max(d.norm() * g.dv);
-                if full {
-                    kua += kq.b.transpose() * dg * g.dv;
-                }
-            }
-            if !full {
-                continue;
-            }
-            energy += material.energy(&e)? * g.dv;
-            ru += kq.b.transpose() * s * g.dv;
-            if want_k {
-                kuu += kq.b.transpose() * (d * kq.b) * g.dv;
-                // geometric stiffness δ_ab ∇N_I · S ∇N_J
-                let sm = Matrix2::new(s[0], s[2], s[2], s[1]);
-                for i in 0..4 {
-                    let gi = nalgebra::Vector2::new(g.grad[0][i], g.grad[1][i]);
-                    let sgi = sm * gi;
-                    for j in 0..4 {
-                        let v = sgi.dot(&nalgebra::Vector2::new(g.grad[0][j], g.grad[1][j])) * g.dv;
-                        kuu[(2 * i, 2 * j)] += v;
-                        kuu[(2 * i + 1, 2 * j + 1)] += v;
-                    }
-                }
-            }
-        }
+        let t = gauss_pass(material, geo, &kin, &al, eas, full, want_k)?;
         if !eas {
-            break;
+            break (t, Matrix4::zeros());
         }
-        let last = ra.norm();
-        if full && (last_step || last <= 1e-13 * scale.max(1e-300) * (1.0 + al.norm())) {
-            break;
+        let res = norm4(&t.ra);
+        let inv = kaa_inverse(&t.kaa).ok_or(ElementError::EasNotConverged(res))?;
+        if full && (last_step || res <= 1e-13 * t.scale.max(1e-300) * (1.0 + norm4(&al))) {
+            break (t, inv);
         }
         if it == 25 {
-            return Err(ElementError::EasNotConverged(last));
+            return Err(ElementError::EasNotConverged(res));
         }
-        let da = kaa.lu().solve(&ra).ok_or(ElementError::EasNotConverged(last))?;
-        al -= da;
+        let mut da = [0.0; 4];
+        for (m, v) in da.iter_mut().enumerate() {
+            *v = (0..4).map(|n| inv[(m, n)] * t.ra[n]).sum();
+        }
+        for (a, d) in al.iter_mut().zip(&da) {
+            *a -= d;
+        }
         // a step below round-off: one more pass evaluates everything at this α
-        last_step = da.norm() <= 1e-15 * (1.0 + al.norm());
-    }
+        last_step = norm4(&da) <= 1e-15 * (1.0 + norm4(&al));
+        it += 1;
+    };
     if eas {
-        let inv = kaa.try_inverse().ok_or(ElementError::EasNotConverged(ra.norm()))?;
-        ru -= kua * (inv * ra);
-        if let Some(kout) = k {
-            kuu -= kua * inv * kua.transpose();
-            write_k(&kuu, kout);
+        // R* = R_u − K_uα (K_αα⁻¹ R_α); K* = K_uu − W K_αu with W = K_uα K_αα⁻¹
+        let mut y = [0.0; 4];
+        for (m, v) in y.iter_mut().enumerate() {
+            *v = (0..4).map(|n| inv[(m, n)] * t.ra[n]).sum();
         }
-        alpha.copy_from_slice(al.as_slice());
-    } else if let Some(kout) = k {
-        write_k(&kuu, kout);
+        for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
+            *ri -= (0..4).map(|m| ki[m] * y[m]).sum::<f64>();
+        }
+        if want_k {
+            let mut w = [[0.0; 4]; 8];
+            for (wi, ki) in w.iter_mut().zip(&t.kua) {
+                for (m, v) in wi.iter_mut().enumerate() {
+                    *v = (0..4).map(|n| ki[n] * inv[(n, m)]).sum();
+                }
+            }
+            for i in 0..8 {
+                for j in i..8 {
+                    t.kuu[i][j] -= (0..4).map(|m| w[i][m] * t.kua[j][m]).sum::<f64>();
+                }
+            }
+        }
+        alpha.copy_from_slice(&al);
     }
-    r.copy_from_slice(ru.as_slice());
-    Ok(energy)
+    if let Some(kout) = k {
+        for i in 0..8 {
+            for j in i..8 {
+                kout[8 * i + j] = t.kuu[i][j];
+                kout[8 * j + i] = t.kuu[i][j];
+            }
+        }
+    }
+    r.copy_from_slice(&t.ru);
+    Ok(t.energy)
 }
 
 /// Share `β` of the displacement-based (`Q4`) energy in [`ElementKind::Q4EasStab`].
@@ -390,55 +488,9 @@ fn stabilised(
     Ok((1.0 - beta) * ee + beta * eq)
 }
 
-fn write_k(k: &Mat88, out: &mut [f64; 64]) {
-    for i in 0..8 {
-        for j in 0..8 {
-            out[8 * i + j] = k[(i, j)];
-        }
-    }
-}
-
-/// Green–Lagrange strain and second Piola–Kirchhoff stress at the element centre (for output).
-pub fn quad_centre_stress(
-    kind: ElementKind,
-    material: &Material,
-    x: &[[f64; 2]; 4],
-    u: &[[f64; 2]; 4],
-    alpha: &[f64; 4],
-) -> Result<(Vector3<f64>, Vector3<f64>), ElementError> {
-    let geo = QuadGeometry::new(kind, x)?;
-    let al = SVector::<f64, 4>::from_column_slice(alpha);
-    // centre value = Gauss average (the enhanced field averages to zero)
-    let mut e = Vector3::zeros();
-    for g in &geo.gp {
-        e += 0.25 * (green_lagrange(&kinematics(g, u).f) + g.g * al);
-    }
-    let (s, _) = material.stress_tangent(&e)?;
-    Ok((e, s))
-}
-
-/// Compatible deformation gradient `F = I + Σ u_I ⊗ ∇_X N_I` at the element centre
-/// (for output; fails like [`QuadGeometry::new`] on a non-positive reference Jacobian).
-pub fn quad_centre_deformation_gradient(x: &[[f64; 2]; 4], u: &[[f64; 2]; 4]) -> Result<Matrix2<f64>, ElementError> {
-    let d = dn_dxi(0.0, 0.0);
-    let j = jacobian(x, &d);
-    let det = j.determinant();
-    let inv = j
-        .try_inverse()
-        .filter(|_| det > 0.0)
-        .ok_or(ElementError::BadGeometry(det))?;
-    let mut f = Matrix2::identity();
-    for i in 0..4 {
-        // ∇_X N_I = J⁻ᵀ ∂N_I/∂ξ
-        let g = inv.transpose() * nalgebra::Vector2::new(d[0][i], d[1][i]);
-        for a in 0..2 {
-            for b in 0..2 {
-                f[(a, b)] += u[i][a] * g[b];
-            }
-        }
-    }
-    Ok(f)
-}
+#[path = "quad_output.rs"]
+mod output;
+pub use output::{quad_centre_deformation_gradient, quad_centre_stress};
 
 #[cfg(test)]
 #[path = "quad_tests.rs"]

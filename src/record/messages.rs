@@ -209,6 +209,16 @@ pub struct ContactPointMessage {
     pub point: ContactPointRecord,
 }
 
+/// [`ContactPointMessage`] as written: the same JSON, borrowing the solver's record.
+#[derive(Serialize)]
+pub(crate) struct ContactPointMessageRef<'a> {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    #[serde(flatten)]
+    pub point: &'a ContactPointRecord,
+}
+
 /// A crossing of a master-segment boundary in a converged increment (channel `/crossing`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct CrossingMessage {

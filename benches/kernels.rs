@@ -1,0 +1,113 @@
+//! Per-call cost of the kernels (issue 8, item 3):
+//! * the element kernel: one EAS quadrilateral, residual with and without tangent,
+//!   St. Venant–Kirchhoff and Neo-Hooke, warm-started `α` (as in a Newton iteration, where
+//!   `α` of the last evaluation is the starting guess);
+//! * the contact-point kernel (residual and tangent by second-order dual numbers): a slave
+//!   node on a face segment that it reached from the neighbouring segment (4 node slots,
+//!   8 DOFs), in stick and in slip, for each history-transfer scheme.
+//!
+//! Run: `cargo bench --bench kernels` (figures in the README's performance section).
+
+use contrail::contact::point::{Closed, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
+use contrail::contact::transfer::StoredTraction;
+use contrail::element::material::{lame, Material};
+use contrail::element::quad::{quad_residual_tangent_with, ElementKind, QuadGeometry};
+use contrail::model::contact::{ContactLaw, TransferKind};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+
+const X: [[f64; 2]; 4] = [[0.0, 0.0], [1.3, 0.1], [1.1, 0.9], [-0.1, 0.7]];
+const U: [[f64; 2]; 4] = [[0.0, 0.0], [0.12, 0.05], [0.02, 0.21], [-0.08, 0.03]];
+
+fn bench(c: &mut Criterion) {
+    let (l, m) = lame(2.1e4, 0.3);
+    let materials = [
+        ("svk", Material::SaintVenantKirchhoff { lambda: l, mu: m }),
+        ("neo-hooke", Material::NeoHookean { lambda: l, mu: m }),
+    ];
+    let mut g = c.benchmark_group("element");
+    for (name, mat) in &materials {
+        for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
+            let geo = QuadGeometry::new(kind, &X).expect("valid element");
+            let mut alpha = [0.0; 4];
+            let (mut r, mut k) = ([0.0; 8], [0.0; 64]);
+            // converged α for U, then a slightly different u: the local Newton starts warm
+            quad_residual_tangent_with(kind, mat, &geo, &U, &mut alpha, &mut r, None).expect("evaluates");
+            let mut u = U;
+            u[2][0] += 1e-4;
+            g.bench_function(format!("{kind:?}/{name}/residual+tangent"), |b| {
+                b.iter(|| {
+                    let mut a = alpha;
+                    quad_residual_tangent_with(kind, mat, &geo, black_box(&u), &mut a, &mut r, Some(&mut k))
+                        .expect("evaluates");
+                    black_box((&r, &k));
+                })
+            });
+            g.bench_function(format!("{kind:?}/{name}/residual"), |b| {
+                b.iter(|| {
+                    let mut a = alpha;
+                    quad_residual_tangent_with(kind, mat, &geo, black_box(&u), &mut a, &mut r, None)
+                        .expect("evaluates");
+                    black_box(&r);
+                })
+            });
+        }
+    }
+    g.finish();
+
+    let mut g = c.benchmark_group("contact-point");
+    for scheme in [
+        TransferKind::Straightforward,
+        TransferKind::Continuous,
+        TransferKind::PathLength,
+    ] {
+        for (state, mu) in [("stick", 1e3), ("slip", 0.05)] {
+            let p = crossing_point(scheme, mu);
+            let (mut r, mut k) = ([0.0; 8], [0.0; 64]);
+            g.bench_function(format!("{scheme:?}/{state}"), |b| {
+                b.iter(|| black_box(black_box(&p).residual_tangent(&mut r, &mut k)))
+            });
+        }
+    }
+    g.finish();
+}
+
+/// Slot 0 the slave (penetrating), 1–2 the current segment B, 3 the far node of the segment A
+/// it was on at the last converged increment.
+fn crossing_point(scheme: TransferKind, mu: f64) -> PointProblem {
+    let mut x = [[0.0; 2]; MAX_NODES];
+    x[0] = [0.31, 0.02];
+    x[1] = [0.0, 0.001];
+    x[2] = [0.8, -0.01];
+    x[3] = [-0.5, 0.004];
+    PointProblem {
+        law: ContactLaw {
+            eps_n: 2.1e3,
+            eps_t: 1.7e3,
+            mu,
+        },
+        scheme,
+        x,
+        n_nodes: 4,
+        slave: SlaveSource::Node(0),
+        seg_b: SegSource::Face([1, 2]),
+        closed: Some(Closed {
+            stored: StoredTraction {
+                xi: 0.93,
+                t1: 0.8,
+                a11: 0.0626,
+            },
+            seg_a: SegSource::Face([3, 1]),
+            path: Path {
+                direction: 1,
+                between: 0.0,
+            },
+            touch_gap: None,
+        }),
+        forced: None,
+        at_vertex: None,
+    }
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
