@@ -108,6 +108,37 @@ pub struct Assembler {
     pub timings: Timings,
     /// Reference geometry of each element (computed once; an invalid one fails assembly).
     geometry: Vec<Result<QuadGeometry, ElementError>>,
+    /// Element kernels evaluated by rayon's pool (from [`PARALLEL_ELEMENTS_FROM`] elements).
+    parallel: bool,
+    /// Per-element outputs of one block of the parallel path (allocated once).
+    block: Vec<ElementOut>,
+}
+
+/// Models with at least this many elements evaluate their element kernels in parallel
+/// (rayon), in blocks of [`BLOCK`] elements whose results are then scattered sequentially in
+/// element order: the sums are the sequential ones, bit for bit. Below it the threads cost
+/// more than they save (measured on 2 cores: see docs/large-models.md).
+pub const PARALLEL_ELEMENTS_FROM: usize = 2_000;
+
+/// Elements per parallel block (the per-element buffers of one block: 4096 × 584 bytes).
+const BLOCK: usize = 4096;
+
+/// One element's kernel output: residual, tangent, energy, or the failure.
+#[derive(Clone, Copy)]
+struct ElementOut {
+    re: [f64; 8],
+    ke: [f64; 64],
+    energy: Result<f64, ElementError>,
+}
+
+impl Default for ElementOut {
+    fn default() -> Self {
+        ElementOut {
+            re: [0.0; 8],
+            ke: [0.0; 64],
+            energy: Ok(0.0),
+        }
+    }
 }
 
 fn element_eqs(dofs: &DofMap, nodes: &[usize; 4]) -> [Option<usize>; 8] {
@@ -142,9 +173,119 @@ impl Assembler {
                 .iter()
                 .map(|el| QuadGeometry::new(model.bodies[el.body].kind, &el.nodes.map(|n| model.nodes[n])))
                 .collect(),
+            parallel: false,
+            block: Vec::new(),
         };
+        a.set_parallel(model.elements.len() >= PARALLEL_ELEMENTS_FROM && rayon::current_num_threads() > 1);
         a.build_slots(model);
         a
+    }
+
+    /// Evaluate the element kernels in parallel (`true`) or on the calling thread; both give
+    /// the same bits (the scatter is sequential in element order either way).
+    pub fn set_parallel(&mut self, parallel: bool) {
+        self.parallel = parallel;
+        self.block = if parallel {
+            vec![ElementOut::default(); BLOCK]
+        } else {
+            Vec::new()
+        };
+    }
+
+    /// Whether the element kernels run in parallel.
+    pub fn is_parallel(&self) -> bool {
+        self.parallel
+    }
+
+    /// Add one element's residual and tangent into the global arrays.
+    #[inline]
+    fn scatter_element(&mut self, ie: usize, nodes: &[usize; 4], re: &[f64; 8], ke: Option<&[f64; 64]>) {
+        for (i, &n) in nodes.iter().enumerate() {
+            self.r_full[2 * n] += re[2 * i];
+            self.r_full[2 * n + 1] += re[2 * i + 1];
+            self.r_abs[2 * n] += re[2 * i].abs();
+            self.r_abs[2 * n + 1] += re[2 * i + 1].abs();
+        }
+        if let Some(ke) = ke {
+            for (s, v) in self.elem_slots[ie].iter().zip(ke.iter()) {
+                if *s != NONE {
+                    self.matrix.values[*s as usize] += v;
+                }
+            }
+        }
+    }
+
+    fn elements_sequential(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        alphas: &mut [[f64; 4]],
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        let mut re = [0.0; 8];
+        let mut ke = [0.0; 64];
+        for (ie, el) in model.elements.iter().enumerate() {
+            let body = &model.bodies[el.body];
+            let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+            let k = if with_tangent { Some(&mut ke) } else { None };
+            let fail = |source| AssemblyError { element: ie, source };
+            let geo = self.geometry[ie].as_ref().map_err(|e| fail(*e))?;
+            self.energy += quad_residual_tangent_with(body.kind, &body.material, geo, &ue, &mut alphas[ie], &mut re, k)
+                .map_err(fail)?;
+            self.scatter_element(ie, &el.nodes, &re, with_tangent.then_some(&ke));
+        }
+        Ok(())
+    }
+
+    /// Blocks of [`BLOCK`] elements: kernels in parallel into per-element buffers (each
+    /// element owns its buffer and its `alphas` entry), then the sequential scatter in
+    /// element order, so residual, tangent and energy are summed exactly as in
+    /// [`Self::elements_sequential`]. The first failing element (in element order) is
+    /// reported, as sequentially; the `alphas` of the later elements of its block have been
+    /// updated as well (a failed assembly leaves the trial state dirty either way).
+    fn elements_parallel(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        alphas: &mut [[f64; 4]],
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        use rayon::prelude::*;
+        let mut block = std::mem::take(&mut self.block);
+        let n = model.elements.len();
+        let mut result = Ok(());
+        'blocks: for first in (0..n).step_by(BLOCK) {
+            let last = (first + BLOCK).min(n);
+            let elements = &model.elements[first..last];
+            let geometry = &self.geometry[first..last];
+            let out = &mut block[..last - first];
+            out.par_iter_mut()
+                .zip(alphas[first..last].par_iter_mut())
+                .zip(elements.par_iter().zip(geometry.par_iter()))
+                .with_min_len(64)
+                .for_each(|((o, alpha), (el, geo))| {
+                    let body = &model.bodies[el.body];
+                    let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+                    let k = if with_tangent { Some(&mut o.ke) } else { None };
+                    o.energy = match geo {
+                        Ok(geo) => quad_residual_tangent_with(body.kind, &body.material, geo, &ue, alpha, &mut o.re, k),
+                        Err(e) => Err(*e),
+                    };
+                });
+            for (k, o) in out.iter().enumerate() {
+                let ie = first + k;
+                match o.energy {
+                    Ok(e) => self.energy += e,
+                    Err(source) => {
+                        result = Err(AssemblyError { element: ie, source });
+                        break 'blocks;
+                    }
+                }
+                self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
+            }
+        }
+        self.block = block;
+        result
     }
 
     fn build_slots(&mut self, model: &Model) {
@@ -184,30 +325,10 @@ impl Assembler {
             self.r_abs.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
-            let mut re = [0.0; 8];
-            let mut ke = [0.0; 64];
-            for (ie, el) in model.elements.iter().enumerate() {
-                let body = &model.bodies[el.body];
-                let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
-                let k = if with_tangent { Some(&mut ke) } else { None };
-                let fail = |source| AssemblyError { element: ie, source };
-                let geo = self.geometry[ie].as_ref().map_err(|e| fail(*e))?;
-                self.energy +=
-                    quad_residual_tangent_with(body.kind, &body.material, geo, &ue, &mut alphas[ie], &mut re, k)
-                        .map_err(fail)?;
-                for (i, &n) in el.nodes.iter().enumerate() {
-                    self.r_full[2 * n] += re[2 * i];
-                    self.r_full[2 * n + 1] += re[2 * i + 1];
-                    self.r_abs[2 * n] += re[2 * i].abs();
-                    self.r_abs[2 * n + 1] += re[2 * i + 1].abs();
-                }
-                if with_tangent {
-                    for (s, v) in self.elem_slots[ie].iter().zip(ke.iter()) {
-                        if *s != NONE {
-                            self.matrix.values[*s as usize] += v;
-                        }
-                    }
-                }
+            if self.parallel {
+                self.elements_parallel(model, u, alphas, with_tangent)?;
+            } else {
+                self.elements_sequential(model, u, alphas, with_tangent)?;
             }
             self.missing.clear();
             let elements_done = Instant::now();
@@ -290,5 +411,54 @@ impl Assembler {
                 out[*e] = self.r_full[d];
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::state::TrialState;
+
+    /// Assemble (with or without the tangent) from the same state, sequentially or not.
+    fn assembled(model: &Model, parallel: bool, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
+        let mut asm = Assembler::new(model);
+        asm.set_parallel(parallel);
+        let mut st = TrialState::new(model);
+        for (i, u) in st.u.iter_mut().enumerate() {
+            *u = 1e-4 * (i as f64 * 0.37).sin();
+        }
+        st.contact.reset_current();
+        asm.assemble(model, &st.u, 0.5, &mut st.alphas, &mut st.contact, with_tangent)
+            .unwrap();
+        (asm.r_full.clone(), asm.matrix.values.clone(), asm.energy, st.alphas)
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn parallel_and_sequential_assembly_give_the_same_bits() {
+        // more elements than one parallel block, so the block loop and the scatter order count
+        let sets = vec!["body.block.mesh.elements=[100, 50]".to_string()];
+        let model = crate::load_scene("hertz", &sets).unwrap().1.model;
+        assert!(model.elements.len() > BLOCK);
+        assert!(Assembler::new(&model).is_parallel() || rayon::current_num_threads() == 1);
+        for with_tangent in [true, false] {
+            let (rs, ks, es, als) = assembled(&model, false, with_tangent);
+            let (rp, kp, ep, alp) = assembled(&model, true, with_tangent);
+            assert_eq!(bits(&rs), bits(&rp), "residual");
+            assert_eq!(bits(&ks), bits(&kp), "tangent");
+            assert_eq!(es.to_bits(), ep.to_bits(), "energy");
+            assert_eq!(als, alp, "enhanced-strain parameters");
+            assert!(rs.iter().any(|r| *r != 0.0) && (!with_tangent || ks.iter().any(|k| *k != 0.0)));
+        }
+    }
+
+    #[test]
+    fn small_models_assemble_on_the_calling_thread() {
+        let model = crate::load_scene("cantilever", &[]).unwrap().1.model;
+        assert_eq!(model.elements.len(), 24);
+        assert!(!Assembler::new(&model).is_parallel());
     }
 }

@@ -143,6 +143,14 @@ pub fn progress_lines(o: &mut String, t: &Tracker) {
         let _ = write!(cr, " (last: {p}, segment {a} → {b} in increment {inc})");
     }
     row(o, "crossings", cr);
+    if !t.contact.is_empty() {
+        let closed = t.contact.iter().filter(|c| c.state != ContactState::Open).count();
+        row(
+            o,
+            "in contact",
+            format!("{closed} of {} contact points at the last increment", t.contact.len()),
+        );
+    }
     for p in involved(&t.contact) {
         row(o, "contact", p);
     }
