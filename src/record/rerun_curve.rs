@@ -12,7 +12,7 @@
 //! is logged in pieces of [`PIECE`] points, so a long run does not log its history again at
 //! every increment.
 
-use super::rerun_style::{nice_ceiling, AXES, CURVE, Y_UP_SCALE};
+use super::rerun_style::{nice_ceiling, AXES, CURVE, GRID, SLIP, Y_UP_SCALE};
 use crate::format::plain;
 use rerun::RecordingStream;
 
@@ -106,7 +106,7 @@ impl Curve {
             rec.log(
                 format!("{}/crossings", self.root),
                 &rerun::Points2D::new(self.crossings.iter().map(|p| self.to_box(*p)))
-                    .with_colors([[245, 130, 25, 255]])
+                    .with_colors([SLIP])
                     .with_radii([rerun::Radius::new_ui_points(3.0)]),
             )?;
         }
@@ -132,20 +132,25 @@ impl Curve {
             .with_radii([rerun::Radius::new_ui_points(1.5)])
     }
 
-    /// Axes, a frame at the extents, and the extents as labels at the axis ends.
+    /// Axes, a thinner frame at the extents with mid-lines, and the extents as labels at the
+    /// axis ends.
     fn axes(&self, rec: &RecordingStream) -> LogResult {
         let (w, h) = (WIDTH as f32, 1.0f32);
         rec.log(
             format!("{}/axes", self.root),
+            &rerun::LineStrips2D::new([vec![[0.0, 0.0], [w, 0.0]], vec![[0.0, 0.0], [0.0, h]]])
+                .with_colors([AXES])
+                .with_radii([rerun::Radius::new_ui_points(0.75)]),
+        )?;
+        rec.log(
+            format!("{}/grid", self.root),
             &rerun::LineStrips2D::new([
-                vec![[0.0, 0.0], [w, 0.0]],
-                vec![[0.0, 0.0], [0.0, h]],
                 vec![[0.0, h], [w, h], [w, 0.0]],
                 vec![[w / 2.0, 0.0], [w / 2.0, h]],
                 vec![[0.0, h / 2.0], [w, h / 2.0]],
             ])
-            .with_colors([AXES, AXES, [90, 90, 90, 120], [90, 90, 90, 120], [90, 90, 90, 120]])
-            .with_radii([rerun::Radius::new_ui_points(0.75)]),
+            .with_colors([GRID])
+            .with_radii([rerun::Radius::new_ui_points(0.35)]),
         )?;
         rec.log(
             format!("{}/ticks", self.root),

@@ -18,30 +18,46 @@ pub fn on_screen(p: [f64; 2]) -> [f64; 2] {
     [p[0] * Y_UP_SCALE[0] as f64, p[1] * Y_UP_SCALE[1] as f64]
 }
 
-/// Reference mesh: light translucent grey.
+// Colours that read on both of the viewer's themes (black and white backgrounds, checked
+// with `docs/screenshots.sh`): mid-luminance hues, a contrast of about 3:1 or more against
+// white and 4.5:1 or more against black. rerun 0.36 draws line strips opaque, an alpha only
+// darkening the colour.
+
+/// Reference mesh: grey, drawn as (102, 102, 102) — its alpha darkens it (see above).
 pub const REFERENCE: [u8; 4] = [150, 150, 150, 110];
 /// Deformed mesh.
 pub const MESH: [u8; 4] = [70, 130, 230, 255];
 /// Rigid surfaces and points: a saturated violet that reads on dark and light backgrounds.
 pub const RIGID: [u8; 4] = [190, 70, 200, 255];
-/// Trial tangential traction (thin).
-pub const TRIAL: [u8; 4] = [235, 190, 40, 255];
+/// Trial tangential traction (thin): dark goldenrod (a light yellow vanishes on white).
+pub const TRIAL: [u8; 4] = [184, 134, 11, 255];
 /// Returned tangential traction (thick).
 pub const RETURNED: [u8; 4] = [230, 45, 45, 255];
 /// The force–displacement curve and its current point.
 pub const CURVE: [u8; 4] = [70, 130, 230, 255];
-/// Axes of the curve view.
-pub const AXES: [u8; 4] = [140, 140, 140, 255];
+/// Axes of the curve view and their labels.
+pub const AXES: [u8; 4] = [120, 120, 120, 255];
+/// Frame and mid-lines of the curve view (drawn thinner than the axes).
+pub const GRID: [u8; 4] = [120, 120, 120, 255];
+
+/// Open contact point.
+pub const OPEN: [u8; 4] = [140, 140, 140, 255];
+/// Closed point of a frictionless pair.
+pub const FRICTIONLESS: [u8; 4] = [0, 150, 160, 255];
+/// Sticking point.
+pub const STICK: [u8; 4] = [30, 155, 60, 255];
+/// Slipping point, and the increments with a crossing on the force–displacement curve.
+pub const SLIP: [u8; 4] = [225, 105, 0, 255];
 
 /// Colour of a contact point: open grey, stick green, slip orange; a closed point of a
 /// frictionless pair (`μ = 0`) is teal — the contact law reports such points as `slip`
 /// (the record cannot tell), the view tells them apart by the pair's `μ`.
 pub fn point_colour(state: ContactState, mu: f64) -> [u8; 4] {
     match state {
-        ContactState::Open => [160, 160, 160, 255],
-        _ if mu == 0.0 => [20, 180, 190, 255],
-        ContactState::Stick => [40, 180, 70, 255],
-        ContactState::Slip => [245, 130, 25, 255],
+        ContactState::Open => OPEN,
+        _ if mu == 0.0 => FRICTIONLESS,
+        ContactState::Stick => STICK,
+        ContactState::Slip => SLIP,
     }
 }
 

@@ -287,8 +287,7 @@ impl RerunView {
             let origins: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.origin)).collect();
             let trial: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.trial)).collect();
             let returned: Vec<[f32; 2]> = arrows.iter().map(|a| p32(a.returned)).collect();
-            for (name, colour, radius, vectors) in
-                [("trial", TRIAL, 0.75, trial), ("returned", RETURNED, 2.0, returned)]
+            for (name, colour, radius, vectors) in [("trial", TRIAL, 1.0, trial), ("returned", RETURNED, 2.0, returned)]
             {
                 self.rec
                     .log(
