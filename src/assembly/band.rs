@@ -221,8 +221,9 @@ impl BandLu {
             let col = j * ld + kv;
             b[j] /= self.ab[col];
             let bj = b[j];
-            for i in j.saturating_sub(kv)..j {
-                b[i] -= self.ab[col + i - j] * bj;
+            let lo = j.saturating_sub(kv);
+            for (bi, u) in b[lo..j].iter_mut().zip(&self.ab[col + lo - j..col]) {
+                *bi -= u * bj;
             }
         }
     }

@@ -244,6 +244,8 @@ impl Sums {
 /// One pass over the Gauss points at the enhanced parameters `al`: `R_α`, `K_αα` always
 /// (when `eas`), and with `full` also `R_u`, `K_uα`, the energy and (with `want_k`) `K_uu`
 /// (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
+// index loops: several arrays are walked by the same (triangular) index ranges
+#[allow(clippy::needless_range_loop)]
 fn gauss_pass(
     material: &Material,
     geo: &QuadGeometry,
@@ -416,9 +418,9 @@ pub fn quad_residual_tangent_with(
                     *v = (0..4).map(|n| ki[n] * inv[(n, m)]).sum();
                 }
             }
-            for i in 0..8 {
+            for (i, wi) in w.iter().enumerate() {
                 for j in i..8 {
-                    t.kuu[i][j] -= (0..4).map(|m| w[i][m] * t.kua[j][m]).sum::<f64>();
+                    t.kuu[i][j] -= (0..4).map(|m| wi[m] * t.kua[j][m]).sum::<f64>();
                 }
             }
         }
