@@ -90,7 +90,6 @@ pub fn reverse_cuthill_mckee(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> 
             nbrs.clear();
             nbrs.extend(adj(v).filter(|&w| !placed[w]));
             nbrs.sort_unstable_by_key(|&w| (degree[w], w));
-            nbrs.dedup();
             for &w in &nbrs {
                 placed[w] = true;
                 order.push(w);

@@ -225,13 +225,9 @@ impl Assembler {
         let mut re = [0.0; 8];
         let mut ke = [0.0; 64];
         for (ie, el) in model.elements.iter().enumerate() {
-            let body = &model.bodies[el.body];
-            let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
-            let k = if with_tangent { Some(&mut ke) } else { None };
-            let fail = |source| AssemblyError { element: ie, source };
-            let geo = self.geometry[ie].as_ref().map_err(|e| fail(*e))?;
-            self.energy += quad_residual_tangent_with(body.kind, &body.material, geo, &ue, &mut alphas[ie], &mut re, k)
-                .map_err(fail)?;
+            let k = with_tangent.then_some(&mut ke);
+            self.energy += element_kernel(model, el, &self.geometry[ie], u, &mut alphas[ie], &mut re, k)
+                .map_err(|source| AssemblyError { element: ie, source })?;
             self.scatter_element(ie, &el.nodes, &re, with_tangent.then_some(&ke));
         }
         Ok(())
@@ -264,13 +260,8 @@ impl Assembler {
                 .zip(elements.par_iter().zip(geometry.par_iter()))
                 .with_min_len(64)
                 .for_each(|((o, alpha), (el, geo))| {
-                    let body = &model.bodies[el.body];
-                    let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
-                    let k = if with_tangent { Some(&mut o.ke) } else { None };
-                    o.energy = match geo {
-                        Ok(geo) => quad_residual_tangent_with(body.kind, &body.material, geo, &ue, alpha, &mut o.re, k),
-                        Err(e) => Err(*e),
-                    };
+                    let k = with_tangent.then_some(&mut o.ke);
+                    o.energy = element_kernel(model, el, geo, u, alpha, &mut o.re, k);
                 });
             for (k, o) in out.iter().enumerate() {
                 let ie = first + k;
@@ -412,6 +403,23 @@ impl Assembler {
             }
         }
     }
+}
+
+/// One element's kernel on its nodes' displacements (the element's reference geometry, or
+/// why it has none, computed once by the assembler).
+fn element_kernel(
+    model: &Model,
+    el: &crate::model::Element,
+    geo: &Result<QuadGeometry, ElementError>,
+    u: &[f64],
+    alpha: &mut [f64; 4],
+    re: &mut [f64; 8],
+    ke: Option<&mut [f64; 64]>,
+) -> Result<f64, ElementError> {
+    let body = &model.bodies[el.body];
+    let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+    let geo = geo.as_ref().map_err(|e| *e)?;
+    quad_residual_tangent_with(body.kind, &body.material, geo, &ue, alpha, re, ke)
 }
 
 #[cfg(test)]

@@ -232,29 +232,44 @@ impl SparseMatrix {
                 }
             }
         }
-        if let Some(plan) = self.band.as_mut() {
-            plan.lu.clear();
-            for (&s, &v) in plan.slots.iter().zip(&self.values) {
-                plan.lu.add(s, v);
-            }
-            let factored = plan.lu.factorize();
-            self.factorizations += 1;
-            let done = Instant::now();
-            self.factor_time += done - started;
-            factored?;
-            for (r, &old) in plan.rhs.iter_mut().zip(&plan.perm) {
-                *r = b[old];
-            }
-            plan.lu.solve(&mut plan.rhs);
-            for (r, &old) in plan.rhs.iter().zip(&plan.perm) {
-                b[old] = *r;
-            }
-            self.solve_time += done.elapsed();
-            if b.iter().any(|v| !v.is_finite()) {
-                return Err(LinearError::NonFinite);
-            }
-            return Ok(());
+        if self.band.is_some() {
+            self.solve_band(started, b)?;
+        } else {
+            self.solve_sparse(started, b)?;
         }
+        if b.iter().any(|v| !v.is_finite()) {
+            return Err(LinearError::NonFinite);
+        }
+        Ok(())
+    }
+
+    /// Factorise and solve with the banded LU of the RCM-ordered matrix.
+    fn solve_band(&mut self, started: Instant, b: &mut [f64]) -> Result<(), LinearError> {
+        let Some(plan) = self.band.as_mut() else {
+            return Err(LinearError::Factorization("no banded factorisation planned".into()));
+        };
+        plan.lu.clear();
+        for (&s, &v) in plan.slots.iter().zip(&self.values) {
+            plan.lu.add(s, v);
+        }
+        let factored = plan.lu.factorize();
+        self.factorizations += 1;
+        let done = Instant::now();
+        self.factor_time += done - started;
+        factored?;
+        for (r, &old) in plan.rhs.iter_mut().zip(&plan.perm) {
+            *r = b[old];
+        }
+        plan.lu.solve(&mut plan.rhs);
+        for (r, &old) in plan.rhs.iter().zip(&plan.perm) {
+            b[old] = *r;
+        }
+        self.solve_time += done.elapsed();
+        Ok(())
+    }
+
+    /// Factorise and solve with faer's sparse LU (symbolic analysis reused).
+    fn solve_sparse(&mut self, started: Instant, b: &mut [f64]) -> Result<(), LinearError> {
         let par = if self.n < PARALLEL_FROM {
             Par::Seq
         } else {
@@ -311,9 +326,6 @@ impl SparseMatrix {
             *bi = self.rhs[(i, 0)];
         }
         self.solve_time += factored.elapsed();
-        if b.iter().any(|v| !v.is_finite()) {
-            return Err(LinearError::NonFinite);
-        }
         Ok(())
     }
 }

@@ -28,9 +28,9 @@ pub struct McapOptions {
     pub positions_every: usize,
     /// zstd compression of the chunks (on by default; off only for debugging).
     pub compress: bool,
-    /// zstd level (default 1, the fastest of the regular levels: on the strip-channel
-    /// recording it writes 5 % less than level 3 and costs less CPU; 19 for small golden
-    /// files; 0 means the library's default, 3).
+    /// zstd level (default 1, the fastest of the regular levels; on the strip-channel
+    /// recording it even writes 5 % less than level 3; 19 for small golden files; 0 means
+    /// the library's default, 3).
     pub compression_level: u32,
     /// Message index records (for seeking by time; readers work without them). Off for the
     /// golden files, where they would be a third of the size.
