@@ -28,7 +28,8 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("element");
     for (name, mat) in &materials {
         for kind in [ElementKind::Q4, ElementKind::Q4Eas] {
-            let geo = QuadGeometry::new(kind, &X).expect("valid element");
+            // as the assembler builds it (closed-form α for St. Venant–Kirchhoff)
+            let geo = QuadGeometry::for_material(kind, mat, &X).expect("valid element");
             let mut alpha = [0.0; 4];
             let (mut r, mut k) = ([0.0; 8], [0.0; 64]);
             // converged α for U, then a slightly different u: the local Newton starts warm
@@ -53,6 +54,22 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
+    // the general path (local Newton on α) for the material with a constant tangent
+    let (kind, mat) = (ElementKind::Q4Eas, &materials[0].1);
+    let geo = QuadGeometry::new(kind, &X).expect("valid element");
+    let mut alpha = [0.0; 4];
+    let (mut r, mut k) = ([0.0; 8], [0.0; 64]);
+    quad_residual_tangent_with(kind, mat, &geo, &U, &mut alpha, &mut r, None).expect("evaluates");
+    let mut u = U;
+    u[2][0] += 1e-4;
+    g.bench_function("Q4Eas/svk-local-newton/residual+tangent", |b| {
+        b.iter(|| {
+            let mut a = alpha;
+            quad_residual_tangent_with(kind, mat, &geo, black_box(&u), &mut a, &mut r, Some(&mut k))
+                .expect("evaluates");
+            black_box((&r, &k));
+        })
+    });
     g.finish();
 
     let mut g = c.benchmark_group("contact-point");

@@ -6,7 +6,7 @@
 //! counts the compression and batcher threads in full and gives steadier ratios.
 
 use contrail::problem::Problem;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
 use contrail::record::rerun_sink::{self, RerunSink, RerunTargets};
 use contrail::record::{Observer, RunInfo};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -47,17 +47,22 @@ fn bench(c: &mut Criterion) {
             contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
         })
     });
-    g.bench_function("solve + mcap, no compression", |b| {
-        b.iter(|| {
-            let file = BufWriter::new(std::fs::File::create(&mcap).expect("create"));
-            let opts = McapOptions {
-                compress: false,
-                ..McapOptions::default()
-            };
-            let mut sink = McapSink::new(file, "bench.mcap", opts).expect("mcap");
-            contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
-        })
-    });
+    for (label, compression) in [
+        ("zstd", ChunkCompression::Zstd),
+        ("no compression", ChunkCompression::None),
+    ] {
+        g.bench_function(format!("solve + mcap, {label}"), |b| {
+            b.iter(|| {
+                let file = BufWriter::new(std::fs::File::create(&mcap).expect("create"));
+                let opts = McapOptions {
+                    compression,
+                    ..McapOptions::default()
+                };
+                let mut sink = McapSink::new(file, "bench.mcap", opts).expect("mcap");
+                contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
+            })
+        });
+    }
     let rrd = dir.join("bench.rrd");
     g.bench_function("solve + rerun file", |b| {
         b.iter(|| {

@@ -59,6 +59,7 @@ fn a_steady_state_newton_iteration_allocates_nothing() {
         0.0,
         &mut |_| true,
         (1, 0),
+        false,
         &mut ws,
     )
     .expect("the first increment converges");

@@ -8,7 +8,7 @@
 
 use contrail::analysis::diff::{diff, Align, DiffReport};
 use contrail::analysis::recording::Recording;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
 use std::io::Cursor;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;
@@ -28,9 +28,9 @@ fn record(scene: &str, sets: &[&str], positions_every: usize) -> Vec<u8> {
     let info = contrail::run_info(&src, &sets, &model);
     let opts = McapOptions {
         positions_every,
+        compression: ChunkCompression::Zstd,
         compression_level: 19,
         message_indexes: false,
-        ..McapOptions::default()
     };
     let mut sink = McapSink::new(Cursor::new(Vec::new()), scene, opts).unwrap();
     // a golden run may end in a failure: that is recorded and compared like the rest

@@ -27,6 +27,7 @@ pub fn expand(header: &ChunkHeader, data: &[u8], limit: u64) -> Result<Vec<u8>, 
         "" => data.to_vec(),
         "zstd" => zstd::bulk::decompress(data, size as usize)
             .map_err(|e| McapError::DecompressionError(format!("zstd: {e}")))?,
+        "lz4" => lz4_frame(data, size)?,
         other => return Err(McapError::UnsupportedCompression(other.to_string())),
     };
     if content.len() as u64 != size {
@@ -45,6 +46,18 @@ pub fn expand(header: &ChunkHeader, data: &[u8], limit: u64) -> Result<Vec<u8>, 
         }
     }
     Ok(content)
+}
+
+/// An LZ4 frame decoded into at most `size + 1` bytes (the caller compares the length with
+/// the header's): every read consumes input or ends, so a damaged frame is an error.
+fn lz4_frame(data: &[u8], size: u64) -> Result<Vec<u8>, McapError> {
+    use std::io::Read;
+    let mut out = Vec::with_capacity(size as usize);
+    lz4_flex::frame::FrameDecoder::new(data)
+        .take(size + 1)
+        .read_to_end(&mut out)
+        .map_err(|e| McapError::DecompressionError(format!("lz4: {e}")))?;
+    Ok(out)
 }
 
 /// Split a byte range into records `(opcode, body)`; a length that runs past the end is an
@@ -87,6 +100,29 @@ mod tests {
             compression: compression.into(),
             compressed_size: data.len() as u64,
         }
+    }
+
+    #[test]
+    fn a_damaged_lz4_chunk_is_an_error_not_a_hang() {
+        use std::io::Write;
+        let content: Vec<u8> = (0..20_000u32).flat_map(|i| (i % 251).to_le_bytes()).collect();
+        let mut enc = lz4_flex::frame::FrameEncoder::new(Vec::new());
+        enc.write_all(&content).unwrap();
+        let data = enc.finish().unwrap();
+        let h = header(&content, &data, "lz4");
+        assert_eq!(expand(&h, &data, u64::MAX).unwrap(), content);
+        for k in (0..data.len()).step_by(5) {
+            let mut bad = data.clone();
+            bad[k] ^= 0x5a;
+            // an error, or (if the byte did not matter) the same content: never other bytes
+            if let Ok(c) = expand(&h, &bad, u64::MAX) {
+                assert_eq!(c, content, "byte {k}");
+            }
+        }
+        // a frame announcing less than it holds is cut at size + 1 and refused
+        let mut short = h.clone();
+        short.uncompressed_size = 100;
+        assert!(expand(&short, &data, u64::MAX).is_err());
     }
 
     #[test]

@@ -171,7 +171,10 @@ impl Assembler {
             geometry: model
                 .elements
                 .iter()
-                .map(|el| QuadGeometry::new(model.bodies[el.body].kind, &el.nodes.map(|n| model.nodes[n])))
+                .map(|el| {
+                    let body = &model.bodies[el.body];
+                    QuadGeometry::for_material(body.kind, &body.material, &el.nodes.map(|n| model.nodes[n]))
+                })
                 .collect(),
             parallel: false,
             block: Vec::new(),

@@ -8,7 +8,7 @@ use contrail::format::{compact_list, plain};
 use contrail::record::background::Background;
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
 use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::vtu_sink::VtuSink;
 use contrail::record::{Fanout, Observer};
@@ -22,7 +22,7 @@ pub struct RunArgs {
     /// Built-in scene name or path to a scene TOML file.
     pub scene: String,
     /// Write the run to FILE: `.csv` (load–displacement history), `.jsonl` (every record),
-    /// `.mcap` (every record, JSON messages with JSON Schemas, zstd chunks) or `.pvd`
+    /// `.mcap` (every record, JSON messages with JSON Schemas, compressed chunks) or `.pvd`
     /// (ParaView: a VTU series of the mesh with displacement, stress and strain, and of the
     /// contact points, in the directory `FILE` without `.pvd`). Repeatable:
     /// `--out run.mcap --out run.csv`.
@@ -31,6 +31,10 @@ pub struct RunArgs {
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
+    /// Compression of the `.mcap` chunks: lz4 (fast to write), zstd (the smallest files)
+    /// or none.
+    #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Lz4)]
+    pub compression: ChunkCompression,
     /// In a `.pvd` series, write every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub vtu_every: u64,
@@ -53,7 +57,8 @@ fn open(path: &Path) -> anyhow::Result<BufWriter<std::fs::File>> {
     Ok(BufWriter::new(f))
 }
 
-fn sink(path: &Path, positions_every: u64, vtu_every: u64) -> anyhow::Result<Box<dyn Observer>> {
+fn sink(path: &Path, a: &RunArgs) -> anyhow::Result<Box<dyn Observer>> {
+    let (positions_every, vtu_every) = (a.positions_every, a.vtu_every);
     let name = path.display().to_string();
     Ok(match path.extension().and_then(|e| e.to_str()) {
         Some("csv") => Box::new(CsvSink::new(open(path)?, &name)),
@@ -61,6 +66,7 @@ fn sink(path: &Path, positions_every: u64, vtu_every: u64) -> anyhow::Result<Box
         Some("mcap") => {
             let opts = McapOptions {
                 positions_every: positions_every as usize,
+                compression: a.compression,
                 ..McapOptions::default()
             };
             if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -94,7 +100,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     let stop = super::signal::stop_flag();
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
     for path in &a.out {
-        sinks.push(sink(path, a.positions_every, a.vtu_every)?);
+        sinks.push(sink(path, &a)?);
     }
     let targets = a.rerun.targets();
     if targets.any() {

@@ -338,6 +338,12 @@ impl ContactSystem {
         self.frozen[ip][is] = Some(frozen);
     }
 
+    /// Release the `flat`-th point (see [`Self::freeze`]).
+    pub fn release(&mut self, flat: usize) {
+        let (ip, is) = self.point_index(flat);
+        self.frozen[ip][is] = None;
+    }
+
     /// `(state, segment)` of every point at the current iterate, written into `out`
     /// (active-set changes; the order is pairs, then slaves).
     pub fn signature_into(&self, out: &mut Vec<Decision>) {

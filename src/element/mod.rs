@@ -1,6 +1,7 @@
 //! Continuum element kernels: local data in, local residual and tangent out.
 
 pub mod body_force;
+mod eas_linear;
 pub mod fields;
 pub mod material;
 pub mod quad;

@@ -27,6 +27,7 @@
 //! differences below). `Q4` is the plain bilinear element (it locks in bending; it is kept
 //! as the reference that shows why the enhancement is there).
 
+use super::eas_linear::LinearEas;
 use super::material::{Material, MaterialError};
 use nalgebra::{Matrix2, Matrix3, Matrix4, Vector3};
 use serde::{Deserialize, Serialize};
@@ -99,6 +100,9 @@ struct GaussGeom {
 #[derive(Debug, Clone, Copy)]
 pub struct QuadGeometry {
     gp: [GaussGeom; 4],
+    /// Closed-form `α(u)` for one material with a constant tangent (see
+    /// [`QuadGeometry::for_material`]).
+    linear: Option<LinearEas>,
 }
 
 impl QuadGeometry {
@@ -153,7 +157,20 @@ impl QuadGeometry {
         };
         Ok(QuadGeometry {
             gp: [mk(&GAUSS[0])?, mk(&GAUSS[1])?, mk(&GAUSS[2])?, mk(&GAUSS[3])?],
+            linear: None,
         })
+    }
+
+    /// [`QuadGeometry::new`] plus, for an EAS element of a material with a constant tangent
+    /// (St. Venant–Kirchhoff), the closed-form enhanced parameters of
+    /// [`super::eas_linear`]: the kernel then needs one pass over the Gauss points instead
+    /// of two when called with that material (with any other it takes the general path).
+    pub fn for_material(kind: ElementKind, material: &Material, x: &[[f64; 2]; 4]) -> Result<Self, ElementError> {
+        let mut geo = Self::new(kind, x)?;
+        if kind != ElementKind::Q4 {
+            geo.linear = LinearEas::new(material, &geo.gp.map(|q| (q.dv, q.g)));
+        }
+        Ok(geo)
     }
 }
 
@@ -201,7 +218,7 @@ fn enhanced(g: &[[f64; 4]; 3], al: &[f64; 4]) -> [f64; 3] {
 }
 
 /// Residual and (optionally) tangent of one quadrilateral, plane strain, unit thickness
-/// (builds the [`QuadGeometry`] and calls [`quad_residual_tangent_with`]).
+/// (builds the [`QuadGeometry`] for the material and calls [`quad_residual_tangent_with`]).
 pub fn quad_residual_tangent(
     kind: ElementKind,
     material: &Material,
@@ -211,7 +228,7 @@ pub fn quad_residual_tangent(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
-    let geo = QuadGeometry::new(kind, x)?;
+    let geo = QuadGeometry::for_material(kind, material, x)?;
     quad_residual_tangent_with(kind, material, &geo, u, alpha, r, k)
 }
 
@@ -370,13 +387,19 @@ pub fn quad_residual_tangent_with(
         kinematics(&geo.gp[3], u),
     ];
     let eas = kind == ElementKind::Q4Eas;
-    let mut al = if eas { *alpha } else { [0.0; 4] };
+    // a constant-tangent material: α(u) in closed form, the first pass is already full
+    let linear = geo.linear.as_ref().filter(|l| eas && l.material == *material);
+    let mut al = match linear {
+        Some(l) => l.alpha([&kin[0].ec, &kin[1].ec, &kin[2].ec, &kin[3].ec]),
+        None if eas => *alpha,
+        None => [0.0; 4],
+    };
     let want_k = k.is_some();
     let norm4 = |v: &[f64; 4]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let mut last_step = false;
     // Local Newton on α (one step is exact for linear S(E)); the displacement terms are
     // evaluated from the second pass on (a pass at a converged α is the last one).
-    let mut it = 0;
+    let mut it = usize::from(linear.is_some());
     let (mut t, inv) = loop {
         let full = !eas || it > 0;
         let t = gauss_pass(material, geo, &kin, &al, eas, full, want_k)?;
@@ -384,7 +407,10 @@ pub fn quad_residual_tangent_with(
             break (t, Matrix4::zeros());
         }
         let res = norm4(&t.ra);
-        let inv = kaa_inverse(&t.kaa).ok_or(ElementError::EasNotConverged(res))?;
+        let inv = match linear {
+            Some(l) => l.kaa_inv,
+            None => kaa_inverse(&t.kaa).ok_or(ElementError::EasNotConverged(res))?,
+        };
         if full && (last_step || res <= 1e-13 * t.scale.max(1e-300) * (1.0 + norm4(&al))) {
             break (t, inv);
         }

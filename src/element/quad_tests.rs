@@ -137,3 +137,43 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn closed_form_alpha_agrees_with_the_local_newton_path() {
+    // St. Venant–Kirchhoff: the geometry made for the material takes α(u) in closed form;
+    // the plain geometry (and any other material) iterates on R_α. Same element to round-off.
+    let m = materials()[0];
+    for kind in [ElementKind::Q4Eas, ElementKind::Q4EasStab] {
+        let plain = QuadGeometry::new(kind, &X).unwrap();
+        let fitted = QuadGeometry::for_material(kind, &m, &X).unwrap();
+        assert!(plain.linear.is_none() && fitted.linear.is_some());
+        for u in [
+            U_LARGE,
+            [[0.0; 2]; 4],
+            [[0.0, 0.0], [-0.2, 0.1], [0.05, -0.3], [0.1, 0.02]],
+        ] {
+            let (mut ap, mut af) = ([0.3, -0.1, 0.2, 0.05], [9.0; 4]);
+            let (mut rp, mut rf) = ([0.0; 8], [0.0; 8]);
+            let (mut kp, mut kf) = ([0.0; 64], [0.0; 64]);
+            let ep = quad_residual_tangent_with(kind, &m, &plain, &u, &mut ap, &mut rp, Some(&mut kp)).unwrap();
+            let ef = quad_residual_tangent_with(kind, &m, &fitted, &u, &mut af, &mut rf, Some(&mut kf)).unwrap();
+            let scale = kp.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            for (a, b) in rp.iter().zip(&rf).chain(kp.iter().zip(&kf)) {
+                assert!((a - b).abs() <= 1e-11 * scale, "{kind:?}: {a} vs {b}");
+            }
+            assert!((ep - ef).abs() <= 1e-11 * scale.max(ep.abs()));
+            for (a, b) in ap.iter().zip(&af) {
+                assert!((a - b).abs() <= 1e-10 * (1.0 + a.abs()), "α {a} vs {b}");
+            }
+        }
+    }
+    // a geometry fitted to one material is not used for another
+    let other = Material::SaintVenantKirchhoff { lambda: 1.0, mu: 1.0 };
+    let fitted = QuadGeometry::for_material(ElementKind::Q4Eas, &m, &X).unwrap();
+    let plain = QuadGeometry::new(ElementKind::Q4Eas, &X).unwrap();
+    let (mut a1, mut a2) = ([0.0; 4], [0.0; 4]);
+    let (mut r1, mut r2) = ([0.0; 8], [0.0; 8]);
+    quad_residual_tangent_with(ElementKind::Q4Eas, &other, &fitted, &U_LARGE, &mut a1, &mut r1, None).unwrap();
+    quad_residual_tangent_with(ElementKind::Q4Eas, &other, &plain, &U_LARGE, &mut a2, &mut r2, None).unwrap();
+    assert_eq!(r1, r2);
+}

@@ -1,5 +1,5 @@
 //! MCAP sink: every record as a JSON message on its channel (see [`super::schemas`]),
-//! zstd-compressed chunks, the run's facts as MCAP metadata and the scene text as an
+//! LZ4- or zstd-compressed chunks, the run's facts as MCAP metadata and the scene text as an
 //! attachment. `finish` writes the outcome as the last message and closes the file, so a
 //! failed or interrupted run still leaves a complete recording.
 //!
@@ -20,14 +20,27 @@ use std::io::{Seek, Write};
 use std::path::Path;
 use std::time::{Instant, SystemTime, UNIX_EPOCH};
 
+/// How the chunks of a recording are compressed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum ChunkCompression {
+    /// LZ4 frames (default): about 4× faster to write than zstd level 1, files about 1.6×
+    /// larger (24×1 strip-channel, 4 800 increments: see the README's performance section).
+    #[default]
+    Lz4,
+    /// zstd at [`McapOptions::compression_level`]: the smallest files.
+    Zstd,
+    /// No compression.
+    None,
+}
+
 /// Options of the MCAP recorder.
 #[derive(Debug, Clone)]
 pub struct McapOptions {
     /// Write node positions and contact pressure profiles every N-th increment (and always the
     /// last one); 1 = every one.
     pub positions_every: usize,
-    /// zstd compression of the chunks (on by default; off only for debugging).
-    pub compress: bool,
+    /// Compression of the chunks.
+    pub compression: ChunkCompression,
     /// zstd level (default 1, the fastest of the regular levels; on the strip-channel
     /// recording it even writes 5 % less than level 3; 19 for small golden files; 0 means
     /// the library's default, 3).
@@ -41,7 +54,7 @@ impl Default for McapOptions {
     fn default() -> Self {
         McapOptions {
             positions_every: 1,
-            compress: true,
+            compression: ChunkCompression::default(),
             compression_level: 1,
             message_indexes: true,
         }
@@ -104,10 +117,10 @@ struct CannotWrite(#[source] std::io::Error);
 impl<W: Write + Seek> McapSink<W> {
     /// Start a recording on `out`; `name` names the sink in error messages (the file path).
     pub fn new(out: W, name: &str, opts: McapOptions) -> Result<Self, ObserverError> {
-        let compression = if opts.compress {
-            Some(mcap::Compression::Zstd)
-        } else {
-            None
+        let compression = match opts.compression {
+            ChunkCompression::Lz4 => Some(mcap::Compression::Lz4),
+            ChunkCompression::Zstd => Some(mcap::Compression::Zstd),
+            ChunkCompression::None => None,
         };
         let writer = mcap::WriteOptions::new()
             .profile(schemas::PROFILE)

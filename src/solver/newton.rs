@@ -1,7 +1,7 @@
 //! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
 //! optional backtracking line search.
 
-use super::active_set::ActiveSetWatch;
+use super::active_set::{hold_predicted_lift_offs, ActiveSetWatch};
 use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
@@ -67,6 +67,8 @@ pub struct Workspace {
     r: Vec<f64>,
     du: Vec<f64>,
     frozen: Vec<bool>,
+    /// Points held closed for the first correction of a predicted start.
+    held: Vec<usize>,
     /// `‖R‖` at each iterate of the last attempt.
     pub residuals: Vec<f64>,
     /// The active-set history of the last attempt.
@@ -75,7 +77,10 @@ pub struct Workspace {
 
 /// Iterate to equilibrium at time `t` starting from `state` (prescribed DOFs are set here).
 /// `on_iteration` receives one record per correction; failures leave `state` dirty (the
-/// caller restores the last converged one).
+/// caller restores the last converged one). `predicted`: `state` is an extrapolated start;
+/// points it finds open that were closed at the last converged increment are held closed
+/// for the first correction ([`hold_predicted_lift_offs`]; the first residual recorded is
+/// then that of the held state).
 ///
 /// Converged when `‖R‖ ≤ max(tol · F_ref, residual_abs, ε_round)` and the energy norm of the
 /// last correction fell below `energy_tol` times that of the first, where `F_ref` is the
@@ -93,9 +98,11 @@ pub fn solve_increment(
     reference_floor: f64,
     record: &mut dyn FnMut(IterationRecord) -> bool,
     (increment, attempt): (usize, usize),
+    predicted: bool,
     ws: &mut Workspace,
 ) -> Result<Converged, NewtonFailure> {
     ws.residuals.clear();
+    ws.held.clear();
     for p in &model.prescribed {
         state.u[p.dof] = p.ramp.at(t);
     }
@@ -116,6 +123,9 @@ pub fn solve_increment(
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
         }
         if !started {
+            if predicted && hold_predicted_lift_offs(&mut state.contact, &mut ws.held) > 0 {
+                asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+            }
             ws.watch.start(&state.contact);
             ws.frozen.clear();
             ws.frozen.resize(state.contact.signature_len(), false);
@@ -200,6 +210,11 @@ pub fn solve_increment(
                 residual_backtracking(model, asm, state, t, ws, rn)?
             }
         };
+        // the held points are free again: the next iterate is assembled with their own state
+        let released = !ws.held.is_empty();
+        for flat in ws.held.drain(..) {
+            state.contact.release(flat);
+        }
         let changes = ws.watch.observe(&state.contact, k + 1);
         // frozen decisions change what the next assembly computes
         let froze = freezing
@@ -207,7 +222,7 @@ pub fn solve_increment(
                 .watch
                 .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
                 > 0;
-        fresh = reuse && !froze;
+        fresh = reuse && !froze && !released;
         let keep_going = record(IterationRecord {
             increment,
             attempt,

@@ -232,6 +232,7 @@ fn drive(
                     obs_err.is_none() && !interrupted
                 },
                 (increment, attempt),
+                predict,
                 &mut ws,
             );
             if let Some(e) = obs_err {
