@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Interoperability checks of contrail recordings (called by .ci/run):
 #  - Python's `mcap` reader + `jsonschema` read and validate every message of recordings of a
-#    completed, a failed and a thinned run (.ci/interop.py);
+#    completed, a failed and a thinned run, and of LZ4-compressed and uncompressed ones
+#    (.ci/interop.py);
 #  - the rerun CLI of rerun-sdk==0.36.3 (the crate's version) verifies the .rrd of a run and
 #    of a replay (`rerun rrd verify`);
 #  - meshio reads the ParaView series (.pvd + .vtu) of `run --out X.pvd` and of
@@ -39,6 +40,9 @@ record() {
     return 0
 }
 record crossing --quiet --out "$TMP/crossing.mcap" --rerun-save "$TMP/crossing.rrd"
+record crossing --quiet --compression lz4 --out "$TMP/crossing-lz4.mcap"
+record crossing --quiet --compression none --out "$TMP/crossing-none.mcap"
+"$BIN" inspect "$TMP/crossing-lz4.mcap" >/dev/null
 record strip-channel --quiet --set fix.1.value=-0.55 --set stepping.increments=220 \
     --positions-every 10 --out "$TMP/strip.mcap" --rerun-save "$TMP/strip.rrd"
 rc=0
@@ -54,7 +58,8 @@ record half-disc --quiet --vtu-every 2 --out "$TMP/hd2.pvd" --out "$TMP/hd2.csv"
 "$BIN" export "$TMP/hd.mcap" --vtu "$TMP/exported" >/dev/null
 
 echo "== interop: mcap + jsonschema"
-"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap"
+"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
+    "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap"
 
 echo "== interop: meshio reads the VTU series"
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"

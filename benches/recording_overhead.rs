@@ -48,7 +48,7 @@ fn bench(c: &mut Criterion) {
         })
     });
     for (label, compression) in [
-        ("zstd", ChunkCompression::Zstd),
+        ("lz4", ChunkCompression::Lz4),
         ("no compression", ChunkCompression::None),
     ] {
         g.bench_function(format!("solve + mcap, {label}"), |b| {

@@ -7,7 +7,7 @@ use contrail::analysis::recording::{Recording, RecordingError};
 use contrail::analysis::recover::{recover, RECOVERED};
 use contrail::model::Model;
 use contrail::problem::Problem;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
 use contrail::record::{Observer, Outcome, RunInfo};
 use std::io::{Cursor, Seek, SeekFrom, Write};
 use std::sync::atomic::AtomicBool;
@@ -23,10 +23,32 @@ fn load(sets: &[&str]) -> (Problem, RunInfo) {
 
 /// A small real recording: crossing, 12 increments (small chunks so there are several).
 fn small_recording() -> Vec<u8> {
+    recording_with(ChunkCompression::default())
+}
+
+fn recording_with(compression: ChunkCompression) -> Vec<u8> {
     let (model, info) = load(&["stepping.increments=12", "stepping.end=0.3"]);
-    let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", McapOptions::default()).unwrap();
+    let opts = McapOptions {
+        compression,
+        ..McapOptions::default()
+    };
+    let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", opts).unwrap();
     let _ = contrail::solver::run(&model, &info, &mut sink, &AtomicBool::new(false));
     sink.into_inner().unwrap().into_inner()
+}
+
+#[test]
+fn lz4_zstd_and_uncompressed_recordings_read_back_alike() {
+    let read = |c| Recording::from_bytes(&recording_with(c), "memory.mcap").unwrap();
+    let (zstd, lz4, none) = (
+        read(ChunkCompression::Zstd),
+        read(ChunkCompression::Lz4),
+        read(ChunkCompression::None),
+    );
+    let contact = |r: &Recording| serde_json::to_string(r.contact_at(12)).unwrap();
+    assert!(!zstd.contact_at(12).is_empty());
+    assert_eq!(contact(&zstd), contact(&lz4));
+    assert_eq!(contact(&zstd), contact(&none));
 }
 
 /// Read `bytes` on another thread; fail if it takes longer than `secs` (a hang).

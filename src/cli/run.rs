@@ -31,9 +31,8 @@ pub struct RunArgs {
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
-    /// Compression of the `.mcap` chunks: lz4 (fast to write), zstd (the smallest files)
-    /// or none.
-    #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Lz4)]
+    /// Compression of the `.mcap` chunks: zstd (level 1), lz4 or none.
+    #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Zstd)]
     pub compression: ChunkCompression,
     /// In a `.pvd` series, write every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]

@@ -1,5 +1,5 @@
 //! An observer on a thread of its own: the solver's thread hands owned copies of the
-//! records to a bounded channel and goes on solving, while a writer thread serialises them
+//! records, in batches, to a bounded channel and goes on solving, while a writer thread serialises them
 //! into the wrapped sink (an MCAP file: JSON encoding and chunking cost about as much as a
 //! small model's solve). On two cores the recording then costs the solver little more than
 //! copying the records.
@@ -19,8 +19,17 @@ use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
-/// Records queued before the solver waits for the writer.
-const QUEUE: usize = 256;
+/// Batches queued before the solver waits for the writer.
+const QUEUE: usize = 16;
+
+/// A batch is handed over when it holds this many records …
+const BATCH_RECORDS: usize = 64;
+
+/// … or this many bytes of copied data (a large model's displacement vectors), whichever
+/// comes first. Handing records over one by one woke the writer thread (a futex call on
+/// each side) for every Newton iteration: on the 24×1 strip-channel run (12 000 records)
+/// that was most of what the recording cost the solver's thread.
+const BATCH_BYTES: usize = 1 << 20;
 
 enum Message {
     Start(Box<Model>, Box<RunInfo>),
@@ -41,7 +50,10 @@ type Failure = Arc<Mutex<Option<ObserverError>>>;
 /// Runs a sink on a writer thread (see the module documentation).
 pub struct Background {
     name: String,
-    tx: Option<SyncSender<Message>>,
+    tx: Option<SyncSender<Vec<Message>>>,
+    /// Records not yet handed over, and the bytes they copied.
+    pending: Vec<Message>,
+    pending_bytes: usize,
     worker: Option<JoinHandle<Result<(), ObserverError>>>,
     failure: Failure,
 }
@@ -59,16 +71,31 @@ impl Background {
         Background {
             name: name.to_string(),
             tx: worker.is_some().then_some(tx),
+            pending: Vec::with_capacity(BATCH_RECORDS),
+            pending_bytes: 0,
             worker,
             failure,
         }
     }
 
-    fn send(&mut self, m: Message) -> Result<(), ObserverError> {
+    /// Queue `m` (`bytes`: what it copied); hand the batch over when it is full.
+    fn send(&mut self, m: Message, bytes: usize) -> Result<(), ObserverError> {
+        self.pending.push(m);
+        self.pending_bytes += bytes;
+        if self.pending.len() < BATCH_RECORDS && self.pending_bytes < BATCH_BYTES {
+            return Ok(());
+        }
+        self.flush()
+    }
+
+    /// Hand the pending records to the writer; reports the writer's first error.
+    fn flush(&mut self) -> Result<(), ObserverError> {
         if let Some(e) = self.failure.lock().ok().and_then(|mut f| f.take()) {
             return Err(e);
         }
-        let sent = self.tx.as_ref().map(|tx| tx.send(m).is_ok()).unwrap_or(false);
+        let batch = std::mem::replace(&mut self.pending, Vec::with_capacity(BATCH_RECORDS));
+        self.pending_bytes = 0;
+        let sent = self.tx.as_ref().map(|tx| tx.send(batch).is_ok()).unwrap_or(false);
         if sent {
             Ok(())
         } else {
@@ -87,10 +114,14 @@ impl Background {
     }
 }
 
-fn write(mut inner: Box<dyn Observer + Send>, rx: Receiver<Message>, failure: Failure) -> Result<(), ObserverError> {
+fn write(
+    mut inner: Box<dyn Observer + Send>,
+    rx: Receiver<Vec<Message>>,
+    failure: Failure,
+) -> Result<(), ObserverError> {
     let mut model: Option<Box<Model>> = None;
     let mut failed = false;
-    for m in rx {
+    for m in rx.into_iter().flatten() {
         let r = match m {
             Message::Finish(outcome) => return inner.finish(&outcome),
             // after an error the sink sees nothing but `finish`
@@ -132,30 +163,34 @@ fn write(mut inner: Box<dyn Observer + Send>, rx: Receiver<Message>, failure: Fa
 
 impl Observer for Background {
     fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
-        self.send(Message::Start(Box::new(model.clone()), Box::new(info.clone())))
+        self.send(Message::Start(Box::new(model.clone()), Box::new(info.clone())), 0)?;
+        self.flush()
     }
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
-        self.send(Message::Iteration(rec.clone()))
+        self.send(Message::Iteration(rec.clone()), std::mem::size_of::<IterationRecord>())
     }
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
-        self.send(Message::Increment {
+        let bytes = 8 * (view.u.len() + rec.residuals.len())
+            + std::mem::size_of_val(view.contact)
+            + std::mem::size_of_val(view.crossings);
+        let m = Message::Increment {
             rec: rec.clone(),
             u: view.u.to_vec(),
             contact: view.contact.to_vec(),
             crossings: view.crossings.to_vec(),
-        })
+        };
+        self.send(m, bytes)
     }
     fn log(&mut self, rec: &LogRecord) -> Result<(), ObserverError> {
-        self.send(Message::Log(rec.clone()))
+        self.send(Message::Log(rec.clone()), rec.message.len())
     }
-    /// Waits for the writer to handle every record and finish the sink.
+    /// Hands over what is pending and waits for the writer to handle every record and
+    /// finish the sink.
     fn finish(&mut self, outcome: &Outcome) -> Result<(), ObserverError> {
         let earlier = self.failure.lock().ok().and_then(|mut f| f.take());
-        let sent = self
-            .tx
-            .take()
-            .map(|tx| tx.send(Message::Finish(outcome.clone())).is_ok())
-            .unwrap_or(false);
+        self.pending.push(Message::Finish(outcome.clone()));
+        let batch = std::mem::take(&mut self.pending);
+        let sent = self.tx.take().map(|tx| tx.send(batch).is_ok()).unwrap_or(false);
         let finished = match self.worker.take().map(JoinHandle::join) {
             Some(Ok(r)) if sent => r,
             Some(Ok(Err(e))) => Err(e),
@@ -172,6 +207,9 @@ impl Observer for Background {
 impl Drop for Background {
     /// A run that never called `finish` (a panic) still lets the writer drain and stop.
     fn drop(&mut self) {
+        if let (Some(tx), false) = (&self.tx, self.pending.is_empty()) {
+            let _ = tx.send(std::mem::take(&mut self.pending));
+        }
         self.tx = None;
         if let Some(w) = self.worker.take() {
             let _ = w.join();
