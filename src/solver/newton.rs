@@ -195,6 +195,11 @@ pub fn solve_increment(
         }
         e_last = energy;
         apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
+        // the held points are free again once the first correction is computed: the line
+        // search's trials (and so the next iterate) are assembled with their own state
+        for flat in ws.held.drain(..) {
+            state.contact.release(flat);
+        }
         let (step, reuse) = if !settings.line_search {
             (1.0, false)
         } else {
@@ -210,11 +215,6 @@ pub fn solve_increment(
                 residual_backtracking(model, asm, state, t, ws, rn)?
             }
         };
-        // the held points are free again: the next iterate is assembled with their own state
-        let released = !ws.held.is_empty();
-        for flat in ws.held.drain(..) {
-            state.contact.release(flat);
-        }
         let changes = ws.watch.observe(&state.contact, k + 1);
         // frozen decisions change what the next assembly computes
         let froze = freezing
@@ -222,7 +222,7 @@ pub fn solve_increment(
                 .watch
                 .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
                 > 0;
-        fresh = reuse && !froze && !released;
+        fresh = reuse && !froze;
         let keep_going = record(IterationRecord {
             increment,
             attempt,
