@@ -163,7 +163,7 @@ impl QuadGeometry {
 
     /// [`QuadGeometry::new`] plus, for an EAS element of a material with a constant tangent
     /// (St. Venant–Kirchhoff), the closed-form enhanced parameters of
-    /// [`super::eas_linear`]: the kernel then needs one pass over the Gauss points instead
+    /// `element/eas_linear.rs`: the kernel then needs one pass over the Gauss points instead
     /// of two when called with that material (with any other it takes the general path).
     pub fn for_material(kind: ElementKind, material: &Material, x: &[[f64; 2]; 4]) -> Result<Self, ElementError> {
         let mut geo = Self::new(kind, x)?;
@@ -258,9 +258,22 @@ impl Sums {
     }
 }
 
-/// One pass over the Gauss points at the enhanced parameters `al`: `R_α`, `K_αα` always
-/// (when `eas`), and with `full` also `R_u`, `K_uα`, the energy and (with `want_k`) `K_uu`
-/// (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
+/// What one Gauss pass evaluates.
+#[derive(Clone, Copy)]
+struct Wanted {
+    /// `R_α` (and `K_αα` with `kaa`): an EAS element.
+    eas: bool,
+    /// `K_αα` (not needed when it is known in closed form, [`LinearEas`]).
+    kaa: bool,
+    /// `R_u`, `K_uα` and the energy.
+    full: bool,
+    /// `K_uu`.
+    k: bool,
+}
+
+/// One pass over the Gauss points at the enhanced parameters `al`: `R_α`, `K_αα` (when
+/// `eas`; `K_αα` unless it is known), and with `full` also `R_u`, `K_uα`, the energy and
+/// (with `k`) `K_uu` (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
 // index loops: several arrays are walked by the same (triangular) index ranges
 #[allow(clippy::needless_range_loop)]
 fn gauss_pass(
@@ -268,10 +281,14 @@ fn gauss_pass(
     geo: &QuadGeometry,
     kin: &[GaussKin; 4],
     al: &[f64; 4],
-    eas: bool,
-    full: bool,
-    want_k: bool,
+    wanted: Wanted,
 ) -> Result<Sums, ElementError> {
+    let Wanted {
+        eas,
+        kaa,
+        full,
+        k: want_k,
+    } = wanted;
     let mut t = Sums::new();
     for (gq, kq) in geo.gp.iter().zip(kin) {
         let dv = gq.dv;
@@ -290,8 +307,10 @@ fn gauss_pass(
             }
             for m in 0..4 {
                 t.ra[m] += dv * (g[0][m] * s[0] + g[1][m] * s[1] + g[2][m] * s[2]);
-                for n in m..4 {
-                    t.kaa[m][n] += dv * (g[0][m] * dg[0][n] + g[1][m] * dg[1][n] + g[2][m] * dg[2][n]);
+                if kaa {
+                    for n in m..4 {
+                        t.kaa[m][n] += dv * (g[0][m] * dg[0][n] + g[1][m] * dg[1][n] + g[2][m] * dg[2][n]);
+                    }
                 }
             }
             t.scale = t.scale.max(d.norm() * dv);
@@ -402,7 +421,13 @@ pub fn quad_residual_tangent_with(
     let mut it = usize::from(linear.is_some());
     let (mut t, inv) = loop {
         let full = !eas || it > 0;
-        let t = gauss_pass(material, geo, &kin, &al, eas, full, want_k)?;
+        let wanted = Wanted {
+            eas,
+            kaa: linear.is_none(),
+            full,
+            k: want_k,
+        };
+        let t = gauss_pass(material, geo, &kin, &al, wanted)?;
         if !eas {
             break (t, Matrix4::zeros());
         }
@@ -464,57 +489,10 @@ pub fn quad_residual_tangent_with(
     Ok(t.energy)
 }
 
-/// Share `β` of the displacement-based (`Q4`) energy in [`ElementKind::Q4EasStab`].
-///
-/// Why: the EAS element has a spurious (hourglass) instability under large compressive
-/// strain (Wriggers & Reese, CMAME 135 (1996) 201–209; de Souza Neto et al., IJNME 38
-/// (1995) 3365–3381). Measured here: a one-layer cantilever of 240×1 elements (tall,
-/// narrow: aspect 12) under 4× the k = 4 elastica load zig-zags near the clamp, where the
-/// bottom fibre is compressed by ≈ 40 % (tip deflection 9.80 instead of 8.58 with
-/// St. Venant–Kirchhoff; no convergence past 39 % of the load with Neo-Hooke; 480×4 the
-/// same). `β = 0.05` stabilises these with Neo-Hooke (8.582 on 240×1, 8.584 on 480×4);
-/// with St. Venant–Kirchhoff, whose uniaxial stress itself peaks at 42 % compression, the
-/// branch followed depends on round-off (8.579 optimised, 9.65 unoptimised). The cost is in
-/// bending accuracy on
-/// flat elements (24×1, k = 4: −0.53 % against Mattiasson's tip deflection, plain EAS
-/// +0.21 %); `β = 0.01` does not stabilise them. `tests/cantilever_hourglass.rs` checks both.
-pub const EAS_STABILISATION: f64 = 0.05;
-
-/// `Π = (1 − β) Π_EAS(u) + β Π_Q4(u)` with `β =` [`EAS_STABILISATION`] (a fixed share of the
-/// bilinear element's stiffness, the simplest of the hourglass controls): both energies are
-/// exact functions of `u`, so are the blended residual and tangent.
-fn stabilised(
-    material: &Material,
-    geo: &QuadGeometry,
-    u: &[[f64; 2]; 4],
-    alpha: &mut [f64; 4],
-    r: &mut [f64; 8],
-    k: Option<&mut [f64; 64]>,
-) -> Result<f64, ElementError> {
-    let beta = EAS_STABILISATION;
-    let mut k = k;
-    let (mut rq, mut kq, mut a0) = ([0.0; 8], [0.0; 64], [0.0; 4]);
-    let want_k = k.is_some();
-    let eq = quad_residual_tangent_with(
-        ElementKind::Q4,
-        material,
-        geo,
-        u,
-        &mut a0,
-        &mut rq,
-        want_k.then_some(&mut kq),
-    )?;
-    let ee = quad_residual_tangent_with(ElementKind::Q4Eas, material, geo, u, alpha, r, k.as_deref_mut())?;
-    for (a, b) in r.iter_mut().zip(&rq) {
-        *a = (1.0 - beta) * *a + beta * b;
-    }
-    if let Some(k) = k {
-        for (a, b) in k.iter_mut().zip(&kq) {
-            *a = (1.0 - beta) * *a + beta * b;
-        }
-    }
-    Ok((1.0 - beta) * ee + beta * eq)
-}
+#[path = "quad_stab.rs"]
+mod stab;
+use stab::stabilised;
+pub use stab::EAS_STABILISATION;
 
 #[path = "quad_output.rs"]
 mod output;
