@@ -18,7 +18,7 @@
 //! kernel falls back to the local Newton iteration if it is not at round-off.
 
 use super::material::Material;
-use nalgebra::{Matrix3, Matrix4};
+use nalgebra::Matrix4;
 
 /// The precondensation of one element for one material (see the module documentation).
 #[derive(Debug, Clone, Copy)]
@@ -35,7 +35,7 @@ impl LinearEas {
     /// `None` unless the material's tangent is constant and `K_αα` is invertible.
     /// `gauss`: `(dv_q, G_q)` at the four Gauss points.
     pub fn new(material: &Material, gauss: &[(f64, [[f64; 4]; 3]); 4]) -> Option<Self> {
-        let d = constant_tangent(material)?;
+        let d = material.constant_tangent()?;
         let mut dg = [[[0.0; 4]; 3]; 4];
         let mut kaa = Matrix4::zeros();
         for ((dv, g), dgq) in gauss.iter().zip(dg.iter_mut()) {
@@ -81,24 +81,6 @@ impl LinearEas {
     }
 }
 
-/// `D = ∂S/∂E` when it does not depend on `E`.
-fn constant_tangent(material: &Material) -> Option<Matrix3<f64>> {
-    match *material {
-        Material::SaintVenantKirchhoff { lambda, mu } => Some(Matrix3::new(
-            lambda + 2.0 * mu,
-            lambda,
-            0.0,
-            lambda,
-            lambda + 2.0 * mu,
-            0.0,
-            0.0,
-            0.0,
-            mu,
-        )),
-        Material::NeoHookean { .. } => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -109,11 +91,11 @@ mod tests {
     fn the_constant_tangent_is_the_materials() {
         let (l, m) = lame(2.1e4, 0.3);
         let mat = Material::SaintVenantKirchhoff { lambda: l, mu: m };
-        let d = constant_tangent(&mat).unwrap();
+        let d = mat.constant_tangent().unwrap();
         for e in [Vector3::new(0.01, -0.02, 0.03), Vector3::new(-0.3, 0.1, 0.0)] {
             let (_, dm) = mat.stress_tangent(&e).unwrap();
             assert_eq!(d, dm);
         }
-        assert!(constant_tangent(&Material::NeoHookean { lambda: l, mu: m }).is_none());
+        assert!(Material::NeoHookean { lambda: l, mu: m }.constant_tangent().is_none());
     }
 }

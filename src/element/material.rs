@@ -37,23 +37,36 @@ pub fn lame(young: f64, poisson: f64) -> (f64, f64) {
     (lambda, mu)
 }
 
+/// `D = ∂S/∂E` of St. Venant–Kirchhoff in plane strain (Voigt, engineering shear).
+fn svk_tangent(lambda: f64, mu: f64) -> Matrix3<f64> {
+    Matrix3::new(
+        lambda + 2.0 * mu,
+        lambda,
+        0.0,
+        lambda,
+        lambda + 2.0 * mu,
+        0.0,
+        0.0,
+        0.0,
+        mu,
+    )
+}
+
 impl Material {
+    /// `D = ∂S/∂E` when it does not depend on `E` (St. Venant–Kirchhoff), else `None`.
+    pub fn constant_tangent(&self) -> Option<Matrix3<f64>> {
+        match *self {
+            Material::SaintVenantKirchhoff { lambda, mu } => Some(svk_tangent(lambda, mu)),
+            Material::NeoHookean { .. } => None,
+        }
+    }
+
     /// Second Piola–Kirchhoff stress `S` and material tangent `D = ∂S/∂E` for a
     /// Green–Lagrange strain `e = [E11, E22, 2E12]` (plane strain).
     pub fn stress_tangent(&self, e: &Vector3<f64>) -> Result<(Vector3<f64>, Matrix3<f64>), MaterialError> {
         match *self {
             Material::SaintVenantKirchhoff { lambda, mu } => {
-                let d = Matrix3::new(
-                    lambda + 2.0 * mu,
-                    lambda,
-                    0.0,
-                    lambda,
-                    lambda + 2.0 * mu,
-                    0.0,
-                    0.0,
-                    0.0,
-                    mu,
-                );
+                let d = svk_tangent(lambda, mu);
                 Ok((d * e, d))
             }
             Material::NeoHookean { lambda, mu } => {
