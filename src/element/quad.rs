@@ -374,16 +374,23 @@ fn kaa_inverse(kaa: &[[f64; 4]; 4]) -> Option<Matrix4<f64>> {
 ///
 /// * `geo` — [`QuadGeometry`] of the reference nodes (counter-clockwise), `u` — nodal
 ///   displacements;
-/// * `alpha` — enhanced-strain parameters: read as the starting guess, overwritten with the
-///   values that satisfy `R_α = 0` for this `u` (ignored for [`ElementKind::Q4`]);
+/// * `alpha` — enhanced-strain parameters: read as the starting guess (by the local Newton
+///   iteration), overwritten with the values that satisfy `R_α = 0` for this `u` (ignored
+///   for [`ElementKind::Q4`]);
 /// * `r` — internal force `R* = ∂Π/∂u` (condensed), local DOF order `[u1x, u1y, u2x, …]`;
 /// * `k` — `∂R*/∂u`, row-major 8×8, when requested.
 ///
-/// The local Newton iteration on `α` evaluates only `R_α`, `K_αα` in its first pass; every
-/// later pass also evaluates `R_u`, `K_uu`, `K_uα`, so the pass that finds `R_α` converged
-/// is the one whose condensed residual and tangent are returned (two passes over the Gauss
-/// points for St. Venant–Kirchhoff from any starting `α`). The symmetric blocks (`K_uu`,
-/// `K_αα`, and the condensed `K*`) are summed on their upper triangles and mirrored.
+/// With a geometry made by [`QuadGeometry::for_material`] for this material and a constant
+/// tangent (St. Venant–Kirchhoff), `α` is computed in closed form from the compatible
+/// strains (`element/eas_linear.rs`; the incoming `alpha` is not needed) and one full pass
+/// over the Gauss points follows (`K_αα⁻¹` is stored, `K_αα` not summed). Otherwise the
+/// local Newton iteration on `α` starts from `alpha` and evaluates only `R_α`, `K_αα` in
+/// its first pass; every later pass also evaluates `R_u`, `K_uu`, `K_uα`, so the pass that
+/// finds `R_α` converged is the one whose condensed residual and tangent are returned. In
+/// both cases a full pass whose `R_α` is not at round-off is followed by another local
+/// Newton step (counted on the strip-channel runs with the closed form: no extra pass in
+/// 296 000 calls on 24×1, 34 in 2.17 million on 120×4). The symmetric blocks (`K_uu`, `K_αα`, and the condensed `K*`) are summed on their
+/// upper triangles and mirrored.
 ///
 /// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
 /// global residual is `r − f_ext`.

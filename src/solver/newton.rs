@@ -156,7 +156,10 @@ pub fn solve_increment(
                     frozen: ws.frozen.iter().filter(|f| **f).count(),
                 });
             }
-            // release the frozen states (keeping admissible segments) and check them
+            // release the frozen states (keeping admissible segments) and check them; points
+            // held for the first correction of a predicted start (only ever at k = 0) are
+            // checked alike but are not reported as frozen (they were not chattering)
+            let chattering = frozen - ws.held.len();
             state.contact.verify_frozen();
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
             asm.free_residual(&mut ws.r);
@@ -167,7 +170,7 @@ pub fn solve_increment(
                     iterations: k,
                     residuals: ws.residuals.clone(),
                     reference: fref,
-                    frozen,
+                    frozen: chattering,
                 });
             }
             if verified_once {
