@@ -2,6 +2,7 @@
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
 pub mod band;
+pub mod helper;
 pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};
@@ -23,6 +24,8 @@ pub struct Timings {
     /// Forward and back substitution.
     pub solve: Duration,
     pub assemblies: usize,
+    /// Assemblies that computed the tangent as well.
+    pub tangent_assemblies: usize,
     pub factorizations: usize,
 }
 
@@ -108,10 +111,21 @@ pub struct Assembler {
     pub timings: Timings,
     /// Reference geometry of each element (computed once; an invalid one fails assembly).
     geometry: Vec<Result<QuadGeometry, ElementError>>,
-    /// Element kernels evaluated by rayon's pool (from [`PARALLEL_ELEMENTS_FROM`] elements).
-    parallel: bool,
-    /// Per-element outputs of one block of the parallel path (allocated once).
+    /// Who evaluates the element kernels besides the calling thread.
+    threads: Threads,
+    /// Per-element outputs of one block of the parallel paths (allocated once).
     block: Vec<ElementOut>,
+}
+
+/// The threads of the element kernels.
+enum Threads {
+    /// The calling thread only.
+    Calling,
+    /// The calling thread and one spinning helper (see [`helper`]), from
+    /// [`HELPER_ELEMENTS_FROM`] elements.
+    Helper(helper::Helper),
+    /// rayon's pool, from [`PARALLEL_ELEMENTS_FROM`] elements.
+    Rayon,
 }
 
 /// Models with at least this many elements evaluate their element kernels in parallel
@@ -119,6 +133,12 @@ pub struct Assembler {
 /// element order: the sums are the sequential ones, bit for bit. Below it the threads cost
 /// more than they save (measured on 2 cores: see docs/large-models.md).
 pub const PARALLEL_ELEMENTS_FROM: usize = 2_000;
+
+/// Models with at least this many elements (and fewer than [`PARALLEL_ELEMENTS_FROM`])
+/// evaluate half their element kernels on a spinning helper thread (see [`helper`]), when
+/// [`helper::allowed`]. Measured on the 120×4 strip-channel (480 elements; 2 cores): see
+/// the README's performance table.
+pub const HELPER_ELEMENTS_FROM: usize = 256;
 
 /// Elements per parallel block (the per-element buffers of one block: 4096 × 584 bytes).
 const BLOCK: usize = 4096;
@@ -176,18 +196,23 @@ impl Assembler {
                     QuadGeometry::for_material(body.kind, &body.material, &el.nodes.map(|n| model.nodes[n]))
                 })
                 .collect(),
-            parallel: false,
+            threads: Threads::Calling,
             block: Vec::new(),
         };
-        a.set_parallel(model.elements.len() >= PARALLEL_ELEMENTS_FROM && rayon::current_num_threads() > 1);
+        let n = model.elements.len();
+        if n >= PARALLEL_ELEMENTS_FROM && rayon::current_num_threads() > 1 {
+            a.set_parallel(true);
+        } else if n >= HELPER_ELEMENTS_FROM && helper::allowed() {
+            a.set_helper(true, n);
+        }
         a.build_slots(model);
         a
     }
 
-    /// Evaluate the element kernels in parallel (`true`) or on the calling thread; both give
-    /// the same bits (the scatter is sequential in element order either way).
+    /// Evaluate the element kernels in parallel on rayon's pool (`true`) or on the calling
+    /// thread; both give the same bits (the scatter is sequential in element order either way).
     pub fn set_parallel(&mut self, parallel: bool) {
-        self.parallel = parallel;
+        self.threads = if parallel { Threads::Rayon } else { Threads::Calling };
         self.block = if parallel {
             vec![ElementOut::default(); BLOCK]
         } else {
@@ -195,9 +220,24 @@ impl Assembler {
         };
     }
 
-    /// Whether the element kernels run in parallel.
+    /// Evaluate half of the `n` element kernels on a helper thread (`true`, when one can be
+    /// started) or all on the calling thread; the same bits either way.
+    pub fn set_helper(&mut self, on: bool, n: usize) {
+        self.threads = match on.then(helper::Helper::start).flatten() {
+            Some(h) => {
+                self.block = vec![ElementOut::default(); n];
+                Threads::Helper(h)
+            }
+            None => {
+                self.block = Vec::new();
+                Threads::Calling
+            }
+        };
+    }
+
+    /// Whether the element kernels run on more than the calling thread.
     pub fn is_parallel(&self) -> bool {
-        self.parallel
+        !matches!(self.threads, Threads::Calling)
     }
 
     /// Add one element's residual and tangent into the global arrays.
@@ -282,6 +322,56 @@ impl Assembler {
         result
     }
 
+    /// The kernels of the first half of the elements on the helper thread, of the second
+    /// half on the calling one, into per-element buffers; then the sequential scatter in
+    /// element order (as [`Self::elements_parallel`]: the sequential bits).
+    fn elements_helper(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        alphas: &mut [[f64; 4]],
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        let Threads::Helper(helper) = &self.threads else {
+            return self.elements_sequential(model, u, alphas, with_tangent);
+        };
+        let n = model.elements.len();
+        let mid = n / 2;
+        let (out_a, out_b) = self.block[..n].split_at_mut(mid);
+        let (al_a, al_b) = alphas.split_at_mut(mid);
+        let geometry = &self.geometry;
+        let kernels = |first: usize, out: &mut [ElementOut], al: &mut [[f64; 4]]| {
+            for (k, (o, alpha)) in out.iter_mut().zip(al.iter_mut()).enumerate() {
+                let ie = first + k;
+                let kk = with_tangent.then_some(&mut o.ke);
+                o.energy = element_kernel(model, &model.elements[ie], &geometry[ie], u, alpha, &mut o.re, kk);
+            }
+        };
+        let first_half = std::sync::Mutex::new((out_a, al_a));
+        helper.join(
+            &|| {
+                let mut g = first_half.lock().unwrap_or_else(|e| e.into_inner());
+                let (out, al) = &mut *g;
+                kernels(0, out, al);
+            },
+            || kernels(mid, out_b, al_b),
+        );
+        let block = std::mem::take(&mut self.block);
+        let mut result = Ok(());
+        for (ie, o) in block[..n].iter().enumerate() {
+            match o.energy {
+                Ok(e) => self.energy += e,
+                Err(source) => {
+                    result = Err(AssemblyError { element: ie, source });
+                    break;
+                }
+            }
+            self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
+        }
+        self.block = block;
+        result
+    }
+
     fn build_slots(&mut self, model: &Model) {
         self.elem_slots = model
             .elements
@@ -313,16 +403,17 @@ impl Assembler {
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
         self.timings.assemblies += 1;
+        self.timings.tangent_assemblies += usize::from(with_tangent);
         loop {
             let started = Instant::now();
             self.r_full.fill(0.0);
             self.r_abs.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
-            if self.parallel {
-                self.elements_parallel(model, u, alphas, with_tangent)?;
-            } else {
-                self.elements_sequential(model, u, alphas, with_tangent)?;
+            match self.threads {
+                Threads::Calling => self.elements_sequential(model, u, alphas, with_tangent)?,
+                Threads::Helper(_) => self.elements_helper(model, u, alphas, with_tangent)?,
+                Threads::Rayon => self.elements_parallel(model, u, alphas, with_tangent)?,
             }
             self.missing.clear();
             let elements_done = Instant::now();
@@ -350,7 +441,7 @@ impl Assembler {
                     for j in 0..nd {
                         let Some(cj) = dofs.eq[dof(j)] else { continue };
                         match matrix.index(ri, cj) {
-                            Some(s) => matrix.values[s] += k[nd * i + j],
+                            Some(s) => matrix.add_to(s, k[nd * i + j]),
                             None => missing.push((ri, cj)),
                         }
                     }
@@ -371,6 +462,17 @@ impl Assembler {
             self.r_abs[l.dof] += f.abs();
         }
         Ok(())
+    }
+
+    /// Return the matrix to the elements' pattern when the entries contact added to it were
+    /// not written since the last call (see [`SparseMatrix::shrink_unused_extension`]); called
+    /// once per increment. Returns whether the pattern changed.
+    pub fn shrink_unused_contact_pattern(&mut self, model: &Model) -> bool {
+        let changed = self.matrix.shrink_unused_extension();
+        if changed {
+            self.build_slots(model);
+        }
+        changed
     }
 
     /// Round-off level of the free residual: the larger of `1e-13 ‖Σ|r_e|‖` over the free
@@ -431,9 +533,13 @@ mod tests {
     use crate::solver::state::TrialState;
 
     /// Assemble (with or without the tangent) from the same state, sequentially or not.
-    fn assembled(model: &Model, parallel: bool, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
+    fn assembled(model: &Model, threads: u8, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
         let mut asm = Assembler::new(model);
-        asm.set_parallel(parallel);
+        match threads {
+            0 => asm.set_parallel(false),
+            1 => asm.set_parallel(true),
+            _ => asm.set_helper(true, model.elements.len()),
+        }
         let mut st = TrialState::new(model);
         for (i, u) in st.u.iter_mut().enumerate() {
             *u = 1e-4 * (i as f64 * 0.37).sin();
@@ -456,12 +562,14 @@ mod tests {
         assert!(model.elements.len() > BLOCK);
         assert!(Assembler::new(&model).is_parallel() || rayon::current_num_threads() == 1);
         for with_tangent in [true, false] {
-            let (rs, ks, es, als) = assembled(&model, false, with_tangent);
-            let (rp, kp, ep, alp) = assembled(&model, true, with_tangent);
-            assert_eq!(bits(&rs), bits(&rp), "residual");
-            assert_eq!(bits(&ks), bits(&kp), "tangent");
-            assert_eq!(es.to_bits(), ep.to_bits(), "energy");
-            assert_eq!(als, alp, "enhanced-strain parameters");
+            let (rs, ks, es, als) = assembled(&model, 0, with_tangent);
+            for threads in [1, 2] {
+                let (rp, kp, ep, alp) = assembled(&model, threads, with_tangent);
+                assert_eq!(bits(&rs), bits(&rp), "residual ({threads})");
+                assert_eq!(bits(&ks), bits(&kp), "tangent ({threads})");
+                assert_eq!(es.to_bits(), ep.to_bits(), "energy ({threads})");
+                assert_eq!(als, alp, "enhanced-strain parameters ({threads})");
+            }
             assert!(rs.iter().any(|r| *r != 0.0) && (!with_tangent || ks.iter().any(|k| *k != 0.0)));
         }
     }

@@ -2,7 +2,7 @@
 //! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
 //! factorisation (faer) is reused until the pattern changes.
 
-use super::band::{reverse_cuthill_mckee, BandLu};
+use super::band::{band_widths, reverse_cuthill_mckee, supervariable_rcm, BandLu, Root};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
@@ -56,18 +56,26 @@ struct BandPlan {
 impl BandPlan {
     /// A plan if the RCM-ordered pattern has a narrow band (see [`BandLu::worth_it`]).
     fn new(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
-        let perm = reverse_cuthill_mckee(n, col_ptr, row_idx);
+        // RCM on the supervariables (nodes) from a far level or a node, and on the unknowns:
+        // the narrowest band wins
+        let candidates = [
+            supervariable_rcm(n, col_ptr, row_idx, Root::FarLevel),
+            supervariable_rcm(n, col_ptr, row_idx, Root::Node),
+            reverse_cuthill_mckee(n, col_ptr, row_idx, Root::Node),
+        ];
+        let (perm, (kl, ku)) = candidates
+            .into_iter()
+            .map(|p| {
+                let w = band_widths(n, col_ptr, row_idx, &p);
+                (p, w)
+            })
+            .min_by_key(|(_, (kl, ku))| kl * ku)
+            .expect("three candidates");
         let mut inv = vec![0; n];
         for (new, &old) in perm.iter().enumerate() {
             inv[old] = new;
         }
         let entries = || (0..n).flat_map(|c| row_idx[col_ptr[c]..col_ptr[c + 1]].iter().map(move |&r| (r, c)));
-        let (mut kl, mut ku) = (0, 0);
-        for (r, c) in entries() {
-            let (i, j) = (inv[r], inv[c]);
-            kl = kl.max(i.saturating_sub(j));
-            ku = ku.max(j.saturating_sub(i));
-        }
         if !BandLu::worth_it(n, kl.max(ku)) {
             return None;
         }
@@ -98,6 +106,13 @@ pub struct SparseMatrix {
     scratch: MemBuffer,
     rhs: Mat<f64>,
     solver: LinearSolver,
+    /// The pattern given at construction (the elements'), which [`Self::extend`] grows.
+    base: Vec<Vec<usize>>,
+    /// Per stored entry: not in `base` (added by [`Self::extend`]).
+    extension: Vec<bool>,
+    /// An extension entry was written by [`Self::add_to`] since the last
+    /// [`Self::shrink_unused_extension`].
+    extension_used: bool,
     /// Banded factorisation of the current pattern, when it pays (decided once per pattern).
     band: Option<BandPlan>,
     band_decided: bool,
@@ -126,6 +141,9 @@ impl SparseMatrix {
         }
         let mut m = SparseMatrix {
             n,
+            base: Vec::new(),
+            extension: Vec::new(),
+            extension_used: false,
             cols,
             col_ptr: Vec::new(),
             row_idx: Vec::new(),
@@ -144,6 +162,8 @@ impl SparseMatrix {
             solve_time: Duration::ZERO,
         };
         m.compress();
+        m.base = m.cols.clone();
+        m.extension = vec![false; m.row_idx.len()];
         m
     }
 
@@ -198,8 +218,43 @@ impl SparseMatrix {
         }
         if changed {
             self.compress();
+            self.extension = (0..self.n)
+                .flat_map(|c| {
+                    self.row_idx[self.col_ptr[c]..self.col_ptr[c + 1]]
+                        .iter()
+                        .map(move |&r| (r, c))
+                })
+                .map(|(r, c)| self.base[c].binary_search(&r).is_err())
+                .collect();
+            self.extension_used = true;
         }
         changed
+    }
+
+    /// `values[slot] += v`, noting whether the entry is one of [`Self::extend`]'s.
+    #[inline]
+    pub fn add_to(&mut self, slot: usize, v: f64) {
+        self.values[slot] += v;
+        self.extension_used |= self.extension[slot];
+    }
+
+    /// Drop the entries [`Self::extend`] added when none was written by [`Self::add_to`]
+    /// since the last call, if the banded factorisation is in use (its band is set by the
+    /// widest entry). Contact couples the nodes of a point's last segment with those of its
+    /// current one only in the increments where it crosses from one to the other (seed eqs.
+    /// 2–4): kept, those entries would widen the band of a 120×4 strip from 13 to 23 for
+    /// the rest of the run. Returns whether the pattern changed (the values are reset then,
+    /// and the caller must recompute its slots). The general sparse LU keeps its pattern (a
+    /// new symbolic analysis of a large model costs more than the fill it saves).
+    pub fn shrink_unused_extension(&mut self) -> bool {
+        let unused = !std::mem::take(&mut self.extension_used);
+        if !unused || self.band.is_none() || self.extension.iter().all(|e| !e) {
+            return false;
+        }
+        self.cols.clone_from(&self.base);
+        self.compress();
+        self.extension = vec![false; self.row_idx.len()];
+        true
     }
 
     pub fn clear_values(&mut self) {

@@ -235,8 +235,8 @@ fn time_split(s: &contrail::solver::RunSummary) -> String {
         .map(|(k, v)| format!("{k} {:.3} s ({:.0} %)", v, 100.0 * v / total))
         .collect();
     out.push(format!(
-        "{} assemblies, {} factorisations",
-        t.assemblies, t.factorizations
+        "{} assemblies ({} with the tangent), {} factorisations",
+        t.assemblies, t.tangent_assemblies, t.factorizations
     ));
     out.join(", ")
 }

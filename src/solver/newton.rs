@@ -115,12 +115,14 @@ pub fn solve_increment(
     let mut freezing = settings.freeze_after > 0;
     let mut verified_once = false;
     let mut started = false;
-    // the line search's full-step trial assembles the tangent too: when it accepts s = 1,
-    // the next iteration starts from that assembly instead of repeating it
-    let mut fresh = false;
+    // the line search's full-step trial assembles the residual and, unless the step is
+    // expected to converge, the tangent: when it accepts s = 1, the next iteration starts
+    // from that assembly instead of repeating it (and adds the tangent only if it must go on)
+    let mut held = Held::Nothing;
     for k in 0..=settings.max_iterations {
-        if !std::mem::take(&mut fresh) {
+        if held == Held::Nothing {
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+            held = Held::Full;
         }
         if !started {
             if predicted && hold_predicted_lift_offs(&mut state.contact, &mut ws.held) > 0 {
@@ -162,6 +164,7 @@ pub fn solve_increment(
             let chattering = frozen - ws.held.len();
             state.contact.verify_frozen();
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+            held = Held::Full;
             asm.free_residual(&mut ws.r);
             let rv = norm(&ws.r);
             if rv <= tol {
@@ -188,6 +191,10 @@ pub fn solve_increment(
         if k == settings.max_iterations {
             break;
         }
+        if held == Held::Residual {
+            // the residual-only trial did not converge after all: its tangent now
+            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        }
         for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
@@ -203,8 +210,17 @@ pub fn solve_increment(
         for flat in ws.held.drain(..) {
             state.contact.release(flat);
         }
+        // Will the full step converge? Then its trial needs no tangent (one fewer per
+        // increment): the energy test is already met by this correction and the residual,
+        // reduced at the rate of the last iteration (an overestimate where convergence is
+        // quadratic), falls below the tolerance. A wrong guess costs one more assembly.
+        let r_prev = ws.residuals.len().checked_sub(2).map(|i| ws.residuals[i]);
+        let likely_converged = k > 0
+            && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE)
+            && r_prev.is_some_and(|rp| rp > 0.0 && rn * (rn / rp) <= tol);
+        let want_tangent = !likely_converged;
         let (step, reuse) = if !settings.line_search {
-            (1.0, false)
+            (1.0, None)
         } else {
             // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)
             let g0 = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
@@ -213,9 +229,9 @@ pub fn solve_increment(
             let slope_ok =
                 settings.line_search_rule == LineSearch::Slope && g0 < 0.0 && state.contact.conservative(model);
             if slope_ok {
-                slope_search(model, asm, state, t, ws, g0)?
+                slope_search(model, asm, state, t, ws, g0, want_tangent)?
             } else {
-                residual_backtracking(model, asm, state, t, ws, rn)?
+                residual_backtracking(model, asm, state, t, ws, rn, want_tangent)?
             }
         };
         let changes = ws.watch.observe(&state.contact, k + 1);
@@ -225,7 +241,16 @@ pub fn solve_increment(
                 .watch
                 .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
                 > 0;
-        fresh = reuse && !froze;
+        held = match (reuse, froze) {
+            (Some(tangent), false) => {
+                if tangent {
+                    Held::Full
+                } else {
+                    Held::Residual
+                }
+            }
+            _ => Held::Nothing,
+        };
         let keep_going = record(IterationRecord {
             increment,
             attempt,
@@ -250,9 +275,9 @@ pub fn solve_increment(
 }
 
 /// Backtracking on `‖R‖` (`state.u` is at `u + Δu` on entry and at `u + sΔu` on return).
-/// The full-step trial assembles the tangent as well, the shorter ones the residual only;
-/// returns `(s, reuse)`, `reuse` when the assembler holds the full assembly at the returned
-/// iterate (the full step was accepted).
+/// The full-step trial assembles the tangent as well when `want_tangent`, the shorter ones
+/// the residual only; returns `(s, reuse)`, `reuse = Some(with tangent)` when the full step
+/// was accepted (the assembler holds that trial's assembly), `None` otherwise.
 fn residual_backtracking(
     model: &Model,
     asm: &mut Assembler,
@@ -260,27 +285,29 @@ fn residual_backtracking(
     t: f64,
     ws: &mut Workspace,
     rn: f64,
-) -> Result<(f64, bool), NewtonFailure> {
+    want_tangent: bool,
+) -> Result<(f64, Option<bool>), NewtonFailure> {
     let mut step = 1.0;
     for _ in 0..8 {
-        let full = step == 1.0;
+        let full = step == 1.0 && want_tangent;
         asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
         asm.free_residual(&mut ws.r);
         let rt = norm(&ws.r);
         if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
-            return Ok((step, full));
+            return Ok((step, (step == 1.0).then_some(full)));
         }
         // take back half of the current step (no copy of u on the hot path)
         apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
         step *= 0.5;
     }
-    Ok((step, false))
+    Ok((step, None))
 }
 
 /// Regula falsi (Illinois) on the slope `g(s) = Δu·R(u + sΔu)` until
 /// `|g(s)| ≤ 0.8 |g(0)|` (see [`LineSearch::Slope`]); `s = 1` when the full step already
-/// meets it or still descends. At most 8 assemblies (the full-step one with the tangent, to
-/// be reused when `s = 1` is accepted: the second value returned); a non-finite residual
+/// meets it or still descends. At most 8 assemblies (the full-step one with the tangent when
+/// `want_tangent`, to be reused when `s = 1` is accepted: the second value returned, as in
+/// [`residual_backtracking`]); a non-finite residual
 /// halves the step.
 fn slope_search(
     model: &Model,
@@ -289,7 +316,8 @@ fn slope_search(
     t: f64,
     ws: &mut Workspace,
     g0: f64,
-) -> Result<(f64, bool), NewtonFailure> {
+    want_tangent: bool,
+) -> Result<(f64, Option<bool>), NewtonFailure> {
     const ETA: f64 = 0.8;
     let (mut s_lo, mut g_lo) = (0.0, g0);
     let mut s_hi = 1.0;
@@ -297,7 +325,7 @@ fn slope_search(
     let mut s = 1.0;
     let mut side = 0i8;
     for _ in 0..8 {
-        let full = s == 1.0;
+        let full = s == 1.0 && want_tangent;
         asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
         asm.free_residual(&mut ws.r);
         let g = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
@@ -305,7 +333,7 @@ fn slope_search(
             0.5 * s
         } else {
             if g.abs() <= ETA * g0.abs() || (s == 1.0 && g < 0.0) {
-                return Ok((s, full));
+                return Ok((s, (s == 1.0).then_some(full)));
             }
             // keep the root of g bracketed in [s_lo, s_hi]
             if g < 0.0 {
@@ -331,7 +359,17 @@ fn slope_search(
         apply(&mut state.u, &asm.dofs.eq, &ws.du, next - s);
         s = next;
     }
-    Ok((s, false))
+    Ok((s, None))
+}
+
+/// What the assembler holds at the current iterate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Held {
+    Nothing,
+    /// The residual (a full-step trial expected to converge).
+    Residual,
+    /// Residual and tangent.
+    Full,
 }
 
 fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {

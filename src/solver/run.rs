@@ -198,6 +198,9 @@ fn drive(
         let mut attempt = 0;
         let mut cuts = 0;
         let mut predict = st.predictor == Predictor::Secant && last_dt.is_some();
+        // entries contact added to the tangent while a point crossed segments go again
+        // when no longer written (they widen a banded factorisation)
+        asm.shrink_unused_contact_pattern(model);
         let (state, conv, t_new) = loop {
             let mut t_new = (t + dt).min(st.end);
             if st.end - t_new < 1e-6 * dt {

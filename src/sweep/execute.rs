@@ -120,6 +120,10 @@ pub fn run_sweep(
         opts.jobs
     }
     .min(pending.len().max(1));
+    // one solve per core: no spinning helper threads besides them
+    if jobs > 1 {
+        crate::assembly::helper::set_allowed(false);
+    }
     let next = AtomicUsize::new(0);
     let (tx, rx) = mpsc::channel();
     let mut ran = 0;
