@@ -31,6 +31,7 @@ fn record(scene: &str, sets: &[&str], positions_every: usize) -> Vec<u8> {
         compression: ChunkCompression::Zstd,
         compression_level: 19,
         message_indexes: false,
+        ..McapOptions::default()
     };
     let mut sink = McapSink::new(Cursor::new(Vec::new()), scene, opts).unwrap();
     // a golden run may end in a failure: that is recorded and compared like the rest

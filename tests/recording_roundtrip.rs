@@ -324,3 +324,43 @@ fn the_rerun_file_of_a_run_and_of_its_replay_are_written() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Format version 2 leaves out the `/contact` messages of slave nodes that stay out of
+/// reach (`mcap_sink::OutOfReach`): the strip-channel has many (the strip's nodes far from
+/// the block). Read back, every point of every increment is there again, bit for bit, and
+/// the recording is the one written without thinning, point for point.
+#[test]
+fn points_out_of_reach_are_left_out_and_restored_bit_for_bit() {
+    let (model, info) = load("strip-channel", &["stepping.increments=4800", "stepping.end=0.05"]);
+    let thinned = McapOptions::default();
+    assert!(thinned.thin_out_of_reach, "thinning is the default");
+    let every = McapOptions {
+        thin_out_of_reach: false,
+        ..McapOptions::default()
+    };
+    let stop = AtomicBool::new(false);
+    let (bytes, mem, ok) = record(&model, &info, thinned, None, &stop);
+    let (bytes_all, _, ok_all) = record(&model, &info, every, None, &stop);
+    assert!(ok && ok_all);
+    let r = Recording::from_bytes(&bytes, "thinned.mcap").unwrap();
+    let r_all = Recording::from_bytes(&bytes_all, "every.mcap").unwrap();
+    let all: usize = mem.contact.iter().map(Vec::len).sum();
+    let written = r.message_counts["/contact"] as usize;
+    assert_eq!(r_all.message_counts["/contact"] as usize, all);
+    assert!(
+        written * 2 < all,
+        "{written} of {all} /contact messages written: expected most out-of-reach points left out"
+    );
+    assert!(bytes.len() < bytes_all.len());
+    assert_eq!(r.increments.len(), mem.contact.len());
+    for (inc, points) in r.increments.iter().zip(&mem.contact) {
+        let got = r.contact_at(inc.increment);
+        assert_eq!(got.len(), points.len(), "increment {}", inc.increment);
+        for (a, b) in got.iter().zip(points) {
+            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
+        }
+        for (a, b) in got.iter().zip(r_all.contact_at(inc.increment)) {
+            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
+        }
+    }
+}

@@ -78,7 +78,7 @@ fn run(mesh: [usize; 2], mu: f64, scheme: &str) -> (Row, Memory) {
         .zip(&curve)
         .find(|(pts, _)| {
             pts.iter()
-                .any(|p| p.slave_label == format!("node {end_node}") && p.position[1] < -0.01)
+                .any(|p| *p.slave_label == *format!("node {end_node}") && p.position[1] < -0.01)
         })
         .map_or(f64::NAN, |(_, c)| c.0);
     let outcome = match (&result, &mem.outcome) {

@@ -22,7 +22,7 @@ pub enum RecordingError {
     Corrupt { path: String, source: mcap::McapError },
     #[error("{path}: not a contrail recording ({detail})")]
     NotContrail { path: String, detail: String },
-    #[error("{path}: recording format version {found}; this contrail reads version {expected}")]
+    #[error("{path}: recording format version {found}; this contrail reads versions {expected}")]
     Version {
         path: String,
         found: String,
@@ -165,11 +165,11 @@ impl Recording {
         }
         let metadata = metadata.ok_or_else(|| not_ours(format!("no `{}` metadata", schemas::METADATA_NAME)))?;
         let version = metadata.get("format_version").cloned().unwrap_or_default();
-        if version != schemas::FORMAT_VERSION {
+        if !schemas::READABLE_VERSIONS.contains(&version.as_str()) {
             return Err(RecordingError::Version {
                 path: name.to_string(),
                 found: version,
-                expected: schemas::FORMAT_VERSION.into(),
+                expected: schemas::READABLE_VERSIONS.join(", "),
             });
         }
         let model = b.model.take().ok_or_else(|| RecordingError::Incomplete {
@@ -181,6 +181,7 @@ impl Recording {
             topic: schemas::MODEL.to_string(),
             what,
         })?;
+        restore_out_of_reach(&mut b.contact, &b.positions);
         check_records(&model, &b).map_err(|(topic, what)| RecordingError::Invalid {
             path: name.to_string(),
             topic,
@@ -210,6 +211,50 @@ impl Recording {
     pub fn contact_at(&self, increment: usize) -> &[ContactPointRecord] {
         self.contact.get(&increment).map_or(&[], Vec::as_slice)
     }
+}
+
+/// Put back the `/contact` records a version-2 recording leaves out (see
+/// [`crate::record::mcap_sink::OutOfReach`]): in each increment with a `/positions`
+/// message, a node slave whose last record was out of reach and that has none is out of
+/// reach still; its record is the last one with the node's current position and no
+/// previous segment. The points of each increment are kept in pair and slave order.
+fn restore_out_of_reach(contact: &mut BTreeMap<usize, Vec<ContactPointRecord>>, positions: &[PositionsMessage]) {
+    let mut last: BTreeMap<(usize, usize), ContactPointRecord> = BTreeMap::new();
+    let mut at = positions.iter().peekable();
+    let increments: std::collections::BTreeSet<usize> = contact
+        .keys()
+        .copied()
+        .chain(positions.iter().map(|p| p.increment))
+        .collect();
+    for inc in increments {
+        while at.next_if(|p| p.increment < inc).is_some() {}
+        let here = at.next_if(|p| p.increment == inc);
+        let points = contact.entry(inc).or_default();
+        let mut present = std::collections::BTreeSet::new();
+        for p in points.iter() {
+            last.insert((p.pair, p.slave), p.clone());
+            present.insert((p.pair, p.slave));
+        }
+        let Some(pos) = here else { continue };
+        let mut added = false;
+        for (key, l) in last.iter_mut() {
+            let Some(node) = crate::record::mcap_sink::node_of_label(&l.slave_label) else {
+                continue;
+            };
+            if l.segment.is_some() || node >= pos.nodes.len() || present.contains(key) {
+                continue;
+            }
+            l.previous_segment = None;
+            l.crossing = false;
+            l.position = pos.nodes[node];
+            points.push(l.clone());
+            added = true;
+        }
+        if added {
+            points.sort_by_key(|p| (p.pair, p.slave));
+        }
+    }
+    contact.retain(|_, v| !v.is_empty());
 }
 
 /// Largest record (a decompressed chunk included) a corrupt length field may announce before

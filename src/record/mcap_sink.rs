@@ -49,7 +49,21 @@ pub struct McapOptions {
     /// Message index records (for seeking by time; readers work without them). Off for the
     /// golden files, where they would be a third of the size.
     pub message_indexes: bool,
+    /// Leave out the `/contact` messages of node slaves that stay out of reach (see
+    /// [`OutOfReach`]); `false` writes every point of every increment.
+    pub thin_out_of_reach: bool,
 }
+
+/// How `/contact` treats a slave node with no master segment within reach (format version
+/// 2). Such a point is open and carries nothing but its position: every other field is null,
+/// NaN or zero, and the same from one increment to the next. Its message is written at the
+/// first increment it is out of reach (and whenever it comes back within reach), and left
+/// out while it stays out of reach in increments whose `/positions` message is written;
+/// readers ([`crate::analysis::recording::Recording`]) restore those records from the last
+/// one written and the node's position in `/positions`, bit for bit (tested by
+/// `tests/recording_roundtrip.rs`). On the 24×1 strip-channel run (4 800 increments) that is
+/// 79 800 of the 124 800 `/contact` messages, 37 % of the recording's JSON.
+pub struct OutOfReach;
 
 impl Default for McapOptions {
     fn default() -> Self {
@@ -58,6 +72,7 @@ impl Default for McapOptions {
             compression: ChunkCompression::default(),
             compression_level: 1,
             message_indexes: true,
+            thin_out_of_reach: true,
         }
     }
 }
@@ -81,6 +96,13 @@ pub struct McapSink<W: Write + Seek> {
     pending_positions: Option<PositionsMessage>,
     /// Pressure profiles of the last increment when they were thinned away (likewise).
     pending_pressure: Vec<PressureRecord>,
+    /// Per pair and slave: the last `/contact` message written was out of reach.
+    out_of_reach: Vec<Vec<bool>>,
+}
+
+/// The node of a slave labelled `node N` (see [`crate::model::Model::slave_label`]).
+pub fn node_of_label(label: &str) -> Option<usize> {
+    label.strip_prefix("node ")?.parse().ok()
 }
 
 /// Called at `finish` with the output and whether everything was written.
@@ -155,6 +177,7 @@ impl<W: Write + Seek> McapSink<W> {
             buf: Vec::with_capacity(4096),
             pending_positions: None,
             pending_pressure: Vec::new(),
+            out_of_reach: Vec::new(),
         })
     }
 
@@ -287,7 +310,21 @@ impl<W: Write + Seek> Observer for McapSink<W> {
 
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         self.put(schemas::INCREMENT, rec)?;
+        let positions_now = rec.increment.is_multiple_of(self.opts.positions_every.max(1));
         for p in view.contact {
+            let out = p.segment.is_none();
+            if self.out_of_reach.len() <= p.pair {
+                self.out_of_reach.resize(p.pair + 1, Vec::new());
+            }
+            let flags = &mut self.out_of_reach[p.pair];
+            if flags.len() <= p.slave {
+                flags.resize(p.slave + 1, false);
+            }
+            let was_out = std::mem::replace(&mut flags[p.slave], out);
+            if self.opts.thin_out_of_reach && positions_now && out && was_out && node_of_label(&p.slave_label).is_some()
+            {
+                continue;
+            }
             let msg = ContactPointMessageRef {
                 increment: rec.increment,
                 t: rec.t,

@@ -29,6 +29,7 @@ use crate::settings::SolverSettings;
 use real::{Real, Real2, Reals};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Facts about a run known before it starts.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -146,10 +147,11 @@ impl IncrementRecord {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct ContactPointRecord {
     pub pair: usize,
-    pub pair_name: String,
+    /// Shared with the run's other records (built once: see [`ContactLabels`]).
+    pub pair_name: Arc<str>,
     pub slave: usize,
     /// `node N` or `rigid NAME`.
-    pub slave_label: String,
+    pub slave_label: Arc<str>,
     /// Master segment of the current projection (None: no segment within reach).
     pub segment: Option<usize>,
     /// Segment at the previous converged increment.
@@ -185,14 +187,51 @@ pub struct ContactPointRecord {
     pub tangent: [f64; 2],
 }
 
+/// The names of a model's contact pairs and slaves, made once per run and shared by the
+/// records of every increment (a record copied to a writer thread copies no string).
+#[derive(Debug, Clone, Default)]
+pub struct ContactLabels {
+    /// Per pair: its name and its slaves' labels.
+    pairs: Vec<(Arc<str>, Vec<Arc<str>>)>,
+}
+
+impl ContactLabels {
+    pub fn new(model: &Model) -> Self {
+        ContactLabels {
+            pairs: (model.contacts.iter())
+                .map(|c| {
+                    let slaves = c.slaves.iter().map(|&s| Arc::from(model.slave_label(s))).collect();
+                    (Arc::from(c.name.as_str()), slaves)
+                })
+                .collect(),
+        }
+    }
+
+    /// The pair's name and the slave's label (made from the model if not in the table).
+    fn get(&self, model: &Model, pair: usize, slave: usize, id: crate::model::Slave) -> (Arc<str>, Arc<str>) {
+        match self.pairs.get(pair) {
+            Some((name, slaves)) => (
+                name.clone(),
+                slaves
+                    .get(slave)
+                    .cloned()
+                    .unwrap_or_else(|| model.slave_label(id).into()),
+            ),
+            None => (model.contacts[pair].name.as_str().into(), model.slave_label(id).into()),
+        }
+    }
+}
+
 impl ContactPointRecord {
-    /// The record of a contact system's snapshot, with the names the model gives.
-    pub fn from_snapshot(model: &Model, s: &PointSnapshot) -> Self {
+    /// The record of a contact system's snapshot, with the names the model gives (from
+    /// `labels`, made once per run).
+    pub fn from_snapshot(model: &Model, labels: &ContactLabels, s: &PointSnapshot) -> Self {
+        let (pair_name, slave_label) = labels.get(model, s.pair, s.slave, s.slave_id);
         ContactPointRecord {
             pair: s.pair,
-            pair_name: model.contacts[s.pair].name.clone(),
+            pair_name,
             slave: s.slave,
-            slave_label: model.slave_label(s.slave_id),
+            slave_label,
             segment: s.segment,
             previous_segment: s.previous_segment,
             xi: s.xi,

@@ -45,7 +45,10 @@ pub const PROFILE: &str = "contrail";
 /// Name of the MCAP metadata record with the run's facts.
 pub const METADATA_NAME: &str = "contrail.run";
 /// Version of the recording layout (channels and their message types).
-pub const FORMAT_VERSION: &str = "1";
+pub const FORMAT_VERSION: &str = "2";
+/// Format versions this build reads (1: every `/contact` point of every increment; 2: points
+/// that stay out of reach left out, see [`crate::record::mcap_sink::OutOfReach`]).
+pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
 
 /// Every channel, in the order they are registered in a recording.
 pub const CHANNELS: &[ChannelSpec] = &[
@@ -74,7 +77,7 @@ pub const CHANNELS: &[ChannelSpec] = &[
         topic: CONTACT,
         schema_name: "contrail.ContactPoint",
         file: "contact_point.schema.json",
-        description: "one per converged increment and slave point: segment, previous segment, xi, anchor, gap, forces, state",
+        description: "one per converged increment and slave point (a slave node out of reach: only where it leaves reach; readers restore the rest, format 2): segment, previous segment, xi, anchor, gap, forces, state",
         schema: || schemars::schema_for!(ContactPointMessage),
     },
     ChannelSpec {

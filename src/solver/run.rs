@@ -182,6 +182,7 @@ fn drive(
     let mut asm = Assembler::new(model);
     let mut ws = Workspace::default();
     let mut committed = TrialState::new(model);
+    let labels = crate::record::ContactLabels::new(model);
     let mut summary = RunSummary::default();
     let mut t = 0.0;
     let mut dt = nominal;
@@ -308,7 +309,7 @@ fn drive(
         let handed = Instant::now();
         let snapshots = committed.contact.snapshots(&cfg);
         let points: Vec<ContactPointRecord> = (snapshots.iter())
-            .map(|p| ContactPointRecord::from_snapshot(model, p))
+            .map(|p| ContactPointRecord::from_snapshot(model, &labels, p))
             .collect();
         let monitors = super::monitor::records(model, &asm, &committed.u, t, &snapshots);
         // committing the history is physics, not recording: kept out of the recording time
