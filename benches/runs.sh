@@ -26,17 +26,20 @@ cases=(
   "24×1, same, without predictor and line search|strip-channel ${SEED[*]} --set stepping.predictor=last --set solver.line_search=false"
   "120×4, μ = 0.2, adaptive (default), no recording|strip-channel --set body.strip.mesh.elements=[120,4]"
   "120×4, μ = 0.2, adaptive (default), MCAP|strip-channel --set body.strip.mesh.elements=[120,4] --out REC.mcap"
+  "120×4, no recording, one thread (RAYON_NUM_THREADS=1)|ONE_THREAD strip-channel --set body.strip.mesh.elements=[120,4]"
 )
-echo "| case | outcome | wall (best of $REPEAT) | CPU | increments | Newton its | µs / iteration | elements | contact | LU | solve | recording |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| case | outcome | wall (best of $REPEAT) | CPU | increments | Newton its | assemblies (with tangent) | µs / iteration | elements | contact | LU | solve | recording |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for c in "${cases[@]}"; do
   label="${c%%|*}"
   args="${c#*|}"
   args="${args//REC.mcap/$TMP/rec.mcap}"
+  threads="${RAYON_NUM_THREADS:-}"
+  case "$args" in ONE_THREAD*) threads=1; args="${args#ONE_THREAD }" ;; esac
   best=""
   for _ in $(seq "$REPEAT"); do
     rc=0
-    /usr/bin/time -f "%e %U %S" -o "$TMP/time" "$BIN" run $args --quiet >"$TMP/out" 2>&1 || rc=$?
+    RAYON_NUM_THREADS="$threads" /usr/bin/time -f "%e %U %S" -o "$TMP/time" "$BIN" run $args --quiet >"$TMP/out" 2>&1 || rc=$?
     read -r wall user sys < <(tail -n1 "$TMP/time")
     if [ -z "$best" ] || awk "BEGIN{exit !($wall < $best)}"; then
       best="$wall"
@@ -48,7 +51,8 @@ for c in "${cases[@]}"; do
   incs=$(sed -n 's/^reached .* in \([0-9]*\) increments.*/\1/p' "$TMP/best")
   its=$(sed -n 's/^newton *\([0-9]*\) iterations.*/\1/p' "$TMP/best")
   split=$(sed -n 's/^time spent *//p' "$TMP/best")
+  asm=$(echo "$split" | sed -n 's/.*, \([0-9]*\) assemblies (\([0-9]*\) with the tangent).*/\1 (\2)/p')
   part() { echo "$split" | sed -n "s/.*$1 \([0-9.]*\) s.*/\1/p"; }
   per=$(awk "BEGIN{ if (\"$its\" > 0) printf \"%.0f\", 1e6 * $best / $its; else print \"–\" }")
-  echo "| $label | $outcome | $best s | $cpu s | $incs | $its | $per | $(part elements) s | $(part contact) s | $(part LU) s | $(part solve) s | $(part recording) s |"
+  echo "| $label | $outcome | $best s | $cpu s | $incs | $its | $asm | $per | $(part elements) s | $(part contact) s | $(part LU) s | $(part solve) s | $(part recording) s |"
 done

@@ -147,7 +147,7 @@ impl IncrementRecord {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct ContactPointRecord {
     pub pair: usize,
-    /// Shared with the run's other records (built once: see [`ContactLabels`]).
+    // shared with the run's other records (built once: see `ContactLabels`)
     pub pair_name: Arc<str>,
     pub slave: usize,
     /// `node N` or `rigid NAME`.
