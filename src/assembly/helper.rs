@@ -21,7 +21,8 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-/// How long the helper spins for the next job before it parks.
+/// How long the helper waits for the next job before it parks: a few microseconds of
+/// busy spinning, then `yield_now` in a loop (the core goes to any other runnable thread).
 pub const SPIN: Duration = Duration::from_millis(2);
 
 static ALLOWED: AtomicBool = AtomicBool::new(true);
@@ -150,11 +151,15 @@ fn work(s: &Shared) {
                 return;
             }
             spins = spins.wrapping_add(1);
-            if spins.is_multiple_of(64) && idle.elapsed() > SPIN {
+            if spins < 1024 {
+                std::hint::spin_loop();
+            } else if idle.elapsed() > SPIN {
                 // parked until `join` or `drop` unparks (or spuriously): check again
                 std::thread::park_timeout(Duration::from_millis(100));
             } else {
-                std::hint::spin_loop();
+                // give the core to any other runnable thread (tests running side by side,
+                // other processes) while waiting
+                std::thread::yield_now();
             }
         }
         done += 1;
