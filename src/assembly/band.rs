@@ -388,6 +388,37 @@ mod tests {
         Ok(())
     }
 
+    /// CSC pattern of an `nx × ny` grid of nodes numbered row by row (`j·nx + i`), `dofs`
+    /// unknowns per node (`dofs·node + component`), each quad coupling all unknowns of its
+    /// four nodes.
+    fn grid_pattern(nx: usize, ny: usize, dofs: usize) -> (Vec<usize>, Vec<usize>) {
+        let id = |i: usize, j: usize| j * nx + i;
+        let mut cols: Vec<Vec<usize>> = (0..dofs * nx * ny).map(|v| vec![v]).collect();
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+                for &a in &q {
+                    for &b in &q {
+                        for da in 0..dofs {
+                            for db in 0..dofs {
+                                cols[dofs * a + da].push(dofs * b + db);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        for c in &mut cols {
+            c.sort_unstable();
+            c.dedup();
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len());
+        }
+        (col_ptr, row_idx)
+    }
+
     #[test]
     fn unsymmetric_band_with_zero_diagonal_needs_pivoting_and_is_solved() {
         // tridiagonal-plus, zero (0,0): the first step must swap rows
@@ -423,28 +454,8 @@ mod tests {
     #[test]
     fn rcm_gives_the_narrow_band_of_a_strip_numbered_along_its_length() {
         // a 20×2 grid of nodes numbered row by row (band 20), 4-neighbour + diagonal coupling
-        let (nx, ny) = (20, 2);
-        let n = nx * ny;
-        let id = |i: usize, j: usize| j * nx + i;
-        let mut cols: Vec<Vec<usize>> = (0..n).map(|v| vec![v]).collect();
-        for j in 0..ny - 1 {
-            for i in 0..nx - 1 {
-                let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
-                for &a in &q {
-                    for &b in &q {
-                        cols[a].push(b);
-                    }
-                }
-            }
-        }
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        for c in &mut cols {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            col_ptr.push(row_idx.len());
-        }
+        let n = 20 * 2;
+        let (col_ptr, row_idx) = grid_pattern(20, 2, 1);
         let perm = reverse_cuthill_mckee(n, &col_ptr, &row_idx, Root::Node);
         let mut inv = vec![usize::MAX; n];
         for (new, &old) in perm.iter().enumerate() {
@@ -464,30 +475,8 @@ mod tests {
         // a 30×5 grid of nodes (30 along, 5 across) with two unknowns per node, quads coupling
         // all unknowns of their four nodes; numbered across the strip first the band would be
         // 2·(5 + 1) + 1 = 13
-        let (nx, ny) = (30, 5);
-        let n = 2 * nx * ny;
-        let id = |i: usize, j: usize| j * nx + i;
-        let mut cols: Vec<Vec<usize>> = (0..n).map(|v| vec![v]).collect();
-        for j in 0..ny - 1 {
-            for i in 0..nx - 1 {
-                let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
-                for &a in &q {
-                    for &b in &q {
-                        for (da, db) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                            cols[2 * a + da].push(2 * b + db);
-                        }
-                    }
-                }
-            }
-        }
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        for c in &mut cols {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            col_ptr.push(row_idx.len());
-        }
+        let n = 2 * 30 * 5;
+        let (col_ptr, row_idx) = grid_pattern(30, 5, 2);
         let plain = reverse_cuthill_mckee(n, &col_ptr, &row_idx, Root::Node);
         let grouped = supervariable_rcm(n, &col_ptr, &row_idx, Root::FarLevel);
         let mut sorted = grouped.clone();

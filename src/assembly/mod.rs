@@ -293,7 +293,7 @@ impl Assembler {
         let mut block = std::mem::take(&mut self.block);
         let n = model.elements.len();
         let mut result = Ok(());
-        'blocks: for first in (0..n).step_by(BLOCK) {
+        for first in (0..n).step_by(BLOCK) {
             let last = (first + BLOCK).min(n);
             let elements = &model.elements[first..last];
             let geometry = &self.geometry[first..last];
@@ -306,20 +306,31 @@ impl Assembler {
                     let k = with_tangent.then_some(&mut o.ke);
                     o.energy = element_kernel(model, el, geo, u, alpha, &mut o.re, k);
                 });
-            for (k, o) in out.iter().enumerate() {
-                let ie = first + k;
-                match o.energy {
-                    Ok(e) => self.energy += e,
-                    Err(source) => {
-                        result = Err(AssemblyError { element: ie, source });
-                        break 'blocks;
-                    }
-                }
-                self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
+            result = self.scatter_outputs(model, first, out, with_tangent);
+            if result.is_err() {
+                break;
             }
         }
         self.block = block;
         result
+    }
+
+    /// Sum the kernel outputs `out` of the elements from `first` on, in element order (the
+    /// sequential path's order): energy, residual and (with the tangent) matrix values.
+    /// Stops at the first failed element and reports it.
+    fn scatter_outputs(
+        &mut self,
+        model: &Model,
+        first: usize,
+        out: &[ElementOut],
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        for (k, o) in out.iter().enumerate() {
+            let ie = first + k;
+            self.energy += o.energy.map_err(|source| AssemblyError { element: ie, source })?;
+            self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
+        }
+        Ok(())
     }
 
     /// The kernels of the first half of the elements on the helper thread, of the second
@@ -357,17 +368,7 @@ impl Assembler {
             || kernels(mid, out_b, al_b),
         );
         let block = std::mem::take(&mut self.block);
-        let mut result = Ok(());
-        for (ie, o) in block[..n].iter().enumerate() {
-            match o.energy {
-                Ok(e) => self.energy += e,
-                Err(source) => {
-                    result = Err(AssemblyError { element: ie, source });
-                    break;
-                }
-            }
-            self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
-        }
+        let result = self.scatter_outputs(model, 0, &block[..n], with_tangent);
         self.block = block;
         result
     }
