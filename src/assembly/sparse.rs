@@ -110,6 +110,8 @@ pub struct SparseMatrix {
     base: Vec<Vec<usize>>,
     /// Per stored entry: not in `base` (added by [`Self::extend`]).
     extension: Vec<bool>,
+    /// The pattern holds entries beyond `base`.
+    extended: bool,
     /// An extension entry was written by [`Self::add_to`] since the last
     /// [`Self::shrink_unused_extension`].
     extension_used: bool,
@@ -143,6 +145,7 @@ impl SparseMatrix {
             n,
             base: Vec::new(),
             extension: Vec::new(),
+            extended: false,
             extension_used: false,
             cols,
             col_ptr: Vec::new(),
@@ -226,6 +229,7 @@ impl SparseMatrix {
                 })
                 .map(|(r, c)| self.base[c].binary_search(&r).is_err())
                 .collect();
+            self.extended = true;
             self.extension_used = true;
         }
         changed
@@ -248,12 +252,13 @@ impl SparseMatrix {
     /// new symbolic analysis of a large model costs more than the fill it saves).
     pub fn shrink_unused_extension(&mut self) -> bool {
         let unused = !std::mem::take(&mut self.extension_used);
-        if !unused || self.band.is_none() || self.extension.iter().all(|e| !e) {
+        if !unused || self.band.is_none() || !self.extended {
             return false;
         }
         self.cols.clone_from(&self.base);
         self.compress();
         self.extension = vec![false; self.row_idx.len()];
+        self.extended = false;
         true
     }
 

@@ -290,11 +290,17 @@ fn gauss_pass(
         k: want_k,
     } = wanted;
     let mut t = Sums::new();
+    // a constant tangent (St. Venant–Kirchhoff) once, not per Gauss point: S = D E, the
+    // same product `stress_tangent` forms
+    let constant = material.constant_tangent();
     for (gq, kq) in geo.gp.iter().zip(kin) {
         let dv = gq.dv;
         let en = enhanced(&gq.g, al);
         let e = Vector3::new(kq.ec[0] + en[0], kq.ec[1] + en[1], kq.ec[2] + en[2]);
-        let (s, d) = material.stress_tangent(&e)?;
+        let (s, d) = match &constant {
+            Some(d) => (d * e, *d),
+            None => material.stress_tangent(&e)?,
+        };
         let b = &kq.b;
         if eas {
             let g = &gq.g;
