@@ -207,26 +207,18 @@ impl ContactLabels {
         }
     }
 
-    /// The pair's name and the slave's label (made from the model if not in the table).
-    fn get(&self, model: &Model, pair: usize, slave: usize, id: crate::model::Slave) -> (Arc<str>, Arc<str>) {
-        match self.pairs.get(pair) {
-            Some((name, slaves)) => (
-                name.clone(),
-                slaves
-                    .get(slave)
-                    .cloned()
-                    .unwrap_or_else(|| model.slave_label(id).into()),
-            ),
-            None => (model.contacts[pair].name.as_str().into(), model.slave_label(id).into()),
-        }
+    /// The name of pair `pair` and the label of its slave `slave`.
+    fn get(&self, pair: usize, slave: usize) -> (Arc<str>, Arc<str>) {
+        let (name, slaves) = &self.pairs[pair];
+        (name.clone(), slaves[slave].clone())
     }
 }
 
 impl ContactPointRecord {
-    /// The record of a contact system's snapshot, with the names the model gives (from
-    /// `labels`, made once per run).
-    pub fn from_snapshot(model: &Model, labels: &ContactLabels, s: &PointSnapshot) -> Self {
-        let (pair_name, slave_label) = labels.get(model, s.pair, s.slave, s.slave_id);
+    /// The record of a contact system's snapshot, named by `labels` (made once per run
+    /// from the model the snapshot is of).
+    pub fn from_snapshot(labels: &ContactLabels, s: &PointSnapshot) -> Self {
+        let (pair_name, slave_label) = labels.get(s.pair, s.slave);
         ContactPointRecord {
             pair: s.pair,
             pair_name,

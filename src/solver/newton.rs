@@ -118,11 +118,11 @@ pub fn solve_increment(
     // the line search's full-step trial assembles the residual and, unless the step is
     // expected to converge, the tangent: when it accepts s = 1, the next iteration starts
     // from that assembly instead of repeating it (and adds the tangent only if it must go on)
-    let mut held = Held::Nothing;
+    let mut assembled = Assembled::Nothing;
     for k in 0..=settings.max_iterations {
-        if held == Held::Nothing {
+        if assembled == Assembled::Nothing {
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-            held = Held::Full;
+            assembled = Assembled::Full;
         }
         if !started {
             if predicted && hold_predicted_lift_offs(&mut state.contact, &mut ws.held) > 0 {
@@ -164,7 +164,7 @@ pub fn solve_increment(
             let chattering = frozen - ws.held.len();
             state.contact.verify_frozen();
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-            held = Held::Full;
+            assembled = Assembled::Full;
             asm.free_residual(&mut ws.r);
             let rv = norm(&ws.r);
             if rv <= tol {
@@ -191,7 +191,7 @@ pub fn solve_increment(
         if k == settings.max_iterations {
             break;
         }
-        if held == Held::Residual {
+        if assembled == Assembled::Residual {
             // the residual-only trial did not converge after all: its tangent now
             asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
         }
@@ -241,15 +241,10 @@ pub fn solve_increment(
                 .watch
                 .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
                 > 0;
-        held = match (reuse, froze) {
-            (Some(tangent), false) => {
-                if tangent {
-                    Held::Full
-                } else {
-                    Held::Residual
-                }
-            }
-            _ => Held::Nothing,
+        assembled = match (reuse, froze) {
+            (Some(true), false) => Assembled::Full,
+            (Some(false), false) => Assembled::Residual,
+            _ => Assembled::Nothing,
         };
         let keep_going = record(IterationRecord {
             increment,
@@ -364,7 +359,7 @@ fn slope_search(
 
 /// What the assembler holds at the current iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Held {
+enum Assembled {
     Nothing,
     /// The residual (a full-step trial expected to converge).
     Residual,

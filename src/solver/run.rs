@@ -309,7 +309,7 @@ fn drive(
         let handed = Instant::now();
         let snapshots = committed.contact.snapshots(&cfg);
         let points: Vec<ContactPointRecord> = (snapshots.iter())
-            .map(|p| ContactPointRecord::from_snapshot(model, &labels, p))
+            .map(|p| ContactPointRecord::from_snapshot(&labels, p))
             .collect();
         let monitors = super::monitor::records(model, &asm, &committed.u, t, &snapshots);
         // committing the history is physics, not recording: kept out of the recording time
