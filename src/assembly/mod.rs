@@ -1,8 +1,12 @@
 //! Global assembly: DOF numbering (prescribed DOFs eliminated), element and contact
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
+pub mod aggregation;
+pub mod amg;
 pub mod band;
+pub mod csr;
 pub mod helper;
+pub mod iterative;
 pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};
@@ -177,7 +181,15 @@ impl Assembler {
             .elements
             .iter()
             .map(|el| element_eqs(&dofs, &el.nodes).iter().flatten().copied().collect());
-        let matrix = SparseMatrix::new(dofs.n_free, &mut groups);
+        let mut matrix = SparseMatrix::new(dofs.n_free, &mut groups);
+        matrix.set_nodes(
+            model
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(i, x)| ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x))
+                .collect(),
+        );
         let mut a = Assembler {
             dofs,
             matrix,

@@ -2,7 +2,9 @@
 //! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
 //! factorisation (faer) is reused until the pattern changes.
 
+use super::aggregation::MeshNode;
 use super::band::{band_widths, reverse_cuthill_mckee, supervariable_rcm, BandLu, Root};
+use super::iterative::{IterativePlan, IterativeStats};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
@@ -28,15 +30,21 @@ pub enum LinearSolver {
     Auto,
     /// Always faer's sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`, for comparisons).
     Sparse,
+    /// The multigrid-preconditioned Krylov solver ([`super::iterative`]) when the matrix
+    /// knows its nodes (`CONTRAIL_LINEAR_SOLVER=iterative`), whatever the size; a solve it
+    /// cannot converge falls back to faer's LU.
+    Iterative,
 }
 
 impl LinearSolver {
-    /// The choice from the environment variable `CONTRAIL_LINEAR_SOLVER` (`sparse` or
-    /// `auto`; anything else means `auto`): a diagnostic switch for benchmarks, not a setting
-    /// of a study (both solvers give the same solution to round-off).
+    /// The choice from the environment variable `CONTRAIL_LINEAR_SOLVER` (`sparse`,
+    /// `iterative` or `auto`; anything else means `auto`): a diagnostic switch for
+    /// benchmarks, not a setting of a study (the solvers give the same solution to round-off,
+    /// the iterative one to its tolerance, [`super::iterative::RELATIVE_TOLERANCE`]).
     pub fn from_env() -> Self {
         match std::env::var("CONTRAIL_LINEAR_SOLVER").as_deref() {
             Ok("sparse") => LinearSolver::Sparse,
+            Ok("iterative") => LinearSolver::Iterative,
             _ => LinearSolver::Auto,
         }
     }
@@ -118,6 +126,13 @@ pub struct SparseMatrix {
     /// Banded factorisation of the current pattern, when it pays (decided once per pattern).
     band: Option<BandPlan>,
     band_decided: bool,
+    /// Free equations and reference position of each mesh node (for the multigrid's
+    /// rigid-body modes), when the owner gave them.
+    nodes: Option<Vec<MeshNode>>,
+    /// The iterative solver of the current pattern, when chosen.
+    iterative: Option<IterativePlan>,
+    /// Counts of the iterative solves of all patterns so far.
+    iterative_stats: IterativeStats,
     /// Number of symbolic factorisations performed (pattern changes + 1).
     pub symbolic_factorizations: usize,
     /// Numeric factorisations performed, and the time spent in them (symbolic analyses
@@ -159,6 +174,9 @@ impl SparseMatrix {
             solver: LinearSolver::from_env(),
             band: None,
             band_decided: false,
+            nodes: None,
+            iterative: None,
+            iterative_stats: IterativeStats::default(),
             symbolic_factorizations: 0,
             factorizations: 0,
             factor_time: Duration::ZERO,
@@ -185,13 +203,51 @@ impl SparseMatrix {
         self.lu_symbolic = None;
         self.band = None;
         self.band_decided = false;
+        self.retire_iterative();
     }
 
-    /// Choose the direct solver (resets the factorisation).
+    /// Choose the solver (resets the factorisation).
     pub fn set_solver(&mut self, solver: LinearSolver) {
         self.solver = solver;
         self.band = None;
         self.band_decided = false;
+        self.retire_iterative();
+    }
+
+    /// Give the free equations `(x, y)` and reference position of each mesh node: the
+    /// multigrid preconditioner of the iterative solver is built on their rigid-body modes.
+    pub fn set_nodes(&mut self, nodes: Vec<MeshNode>) {
+        self.nodes = Some(nodes);
+        self.band_decided = false;
+        self.retire_iterative();
+    }
+
+    /// Counts of the iterative solves so far (all zero when only the LU was used).
+    pub fn iterative_stats(&self) -> IterativeStats {
+        let mut s = self.iterative_stats;
+        if let Some(p) = &self.iterative {
+            let c = p.stats;
+            s.solves += c.solves;
+            s.cg_solves += c.cg_solves;
+            s.krylov_iterations += c.krylov_iterations;
+            s.max_krylov_iterations = s.max_krylov_iterations.max(c.max_krylov_iterations);
+            s.builds += c.builds;
+            s.failures += c.failures;
+            if c.builds > 0 {
+                s.levels = c.levels;
+                s.complexity = c.complexity;
+                s.constrained_nodes = c.constrained_nodes;
+            }
+        }
+        s
+    }
+
+    /// Fold the current iterative plan's counts into the run's and drop it.
+    fn retire_iterative(&mut self) {
+        if self.iterative.is_some() {
+            self.iterative_stats = self.iterative_stats();
+            self.iterative = None;
+        }
     }
 
     /// The half-bandwidths `(kl, ku)` of the banded factorisation in use, if one is.
@@ -291,8 +347,26 @@ impl SparseMatrix {
                     self.symbolic_factorizations += 1;
                 }
             }
+            // the iterative solver only when asked for: on the large-model benchmark it is
+            // slower than the LU at every size measured (docs/large-models.md)
+            if let (LinearSolver::Iterative, Some(nodes)) = (self.solver, &self.nodes) {
+                self.iterative = Some(IterativePlan::new(self.n, &self.col_ptr, &self.row_idx, nodes));
+            }
         }
-        if self.band.is_some() {
+        if let Some(plan) = self.iterative.as_mut() {
+            match plan.solve(&self.values, b) {
+                Ok(setup) => {
+                    self.factor_time += setup;
+                    self.solve_time += started.elapsed() - setup;
+                }
+                Err(_) => {
+                    // this one with the direct LU (counted as a failure; `b` is as it was);
+                    // the next solve tries the iterative solver again
+                    self.solve_time += started.elapsed();
+                    self.solve_sparse(Instant::now(), b)?;
+                }
+            }
+        } else if self.band.is_some() {
             self.solve_band(started, b)?;
         } else {
             self.solve_sparse(started, b)?;
@@ -394,92 +468,5 @@ impl SparseMatrix {
 pub const PARALLEL_FROM: usize = 20_000;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn unsymmetric_solve_and_pattern_growth() {
-        let mut groups = vec![vec![0, 1], vec![1, 2]].into_iter();
-        let mut a = SparseMatrix::new(3, &mut groups);
-        assert_eq!(a.nnz(), 7);
-        assert!(a.index(0, 2).is_none());
-        assert!(a.extend(&[(0, 2)]));
-        assert!(!a.extend(&[(0, 2)]));
-        // A = [[4,1,2],[0,3,1],[0,1,5]] (unsymmetric)
-        for (r, c, v) in [
-            (0, 0, 4.0),
-            (0, 1, 1.0),
-            (0, 2, 2.0),
-            (1, 1, 3.0),
-            (1, 2, 1.0),
-            (2, 1, 1.0),
-            (2, 2, 5.0),
-        ] {
-            let k = a.index(r, c).unwrap();
-            a.values[k] = v;
-        }
-        let x = [1.0, -2.0, 0.5];
-        let mut b = [0.0; 3];
-        a.mul(&x, &mut b);
-        a.solve(&mut b).unwrap();
-        for i in 0..3 {
-            assert!((b[i] - x[i]).abs() < 1e-14);
-        }
-        // refill values, same symbolic factorisation
-        a.values.iter_mut().for_each(|v| *v *= 2.0);
-        a.mul(&x, &mut b);
-        a.solve(&mut b).unwrap();
-        assert_eq!(a.symbolic_factorizations, 1);
-        assert!((b[1] + 2.0).abs() < 1e-14);
-    }
-
-    /// A strip of quads numbered along its length (wide band before reordering), with
-    /// unsymmetric values: the banded and the sparse LU give the same solution.
-    #[test]
-    fn banded_and_sparse_lu_agree_on_a_strip() {
-        let (nx, ny) = (30, 3);
-        let node = |i: usize, j: usize| j * (nx + 1) + i;
-        let mut groups = Vec::new();
-        for j in 0..ny {
-            for i in 0..nx {
-                let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
-                groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
-            }
-        }
-        let n = 2 * (nx + 1) * (ny + 1);
-        let fill = |a: &mut SparseMatrix| {
-            for c in 0..n {
-                for k in a.col_ptr[c]..a.col_ptr[c + 1] {
-                    let r = a.row_idx[k];
-                    a.values[k] = if r == c {
-                        8.0
-                    } else {
-                        ((3 * r + 7 * c) % 11) as f64 / 11.0 - 0.5
-                    };
-                }
-            }
-        };
-        let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
-        let mut solutions = Vec::new();
-        for solver in [LinearSolver::Auto, LinearSolver::Sparse] {
-            let mut a = SparseMatrix::new(n, &mut groups.clone().into_iter());
-            a.set_solver(solver);
-            fill(&mut a);
-            let mut b = vec![0.0; n];
-            a.mul(&x, &mut b);
-            a.solve(&mut b).unwrap();
-            assert_eq!(a.band_widths().is_some(), solver == LinearSolver::Auto);
-            if let Some((kl, ku)) = a.band_widths() {
-                assert!(
-                    kl <= 20 && ku <= 20,
-                    "band ({kl}, {ku}) after RCM (column-wise numbering: 11)"
-                );
-            }
-            solutions.push(b);
-        }
-        for (i, xi) in x.iter().enumerate() {
-            assert!((solutions[0][i] - xi).abs() < 1e-12, "band x[{i}]");
-            assert!((solutions[1][i] - xi).abs() < 1e-12, "sparse x[{i}]");
-        }
-    }
-}
+#[path = "sparse_tests.rs"]
+mod tests;

@@ -182,6 +182,9 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
         );
         row(&mut o, "time spent", time_split(s));
+        if let Some(line) = iterative_line(&s.iterative) {
+            row(&mut o, "linear solver", line);
+        }
     }
     for p in &a.out {
         row(&mut o, "written", p.display().to_string());
@@ -214,6 +217,35 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             Err(RunFailed { message, interrupted }.into())
         }
     }
+}
+
+/// The iterative solver's account, when it was used: "LU" in `time spent` is then the
+/// multigrid setup and "solve" the Krylov iterations.
+fn iterative_line(it: &contrail::assembly::iterative::IterativeStats) -> Option<String> {
+    if it.solves + it.failures == 0 {
+        return None;
+    }
+    let levels: Vec<String> = it.levels.iter().filter(|l| **l > 0).map(|l| l.to_string()).collect();
+    let mut line = format!(
+        "multigrid-preconditioned Krylov ({} CG, {} BiCGStab): {} iterations in {} solves \
+         (at most {}), {} hierarchy builds (levels {}, operator complexity {:.2}); \
+         `LU` above is the multigrid setup, `solve` the Krylov iterations",
+        it.cg_solves,
+        it.solves - it.cg_solves,
+        it.krylov_iterations,
+        it.solves,
+        it.max_krylov_iterations,
+        it.builds,
+        levels.join("/"),
+        it.complexity,
+    );
+    if it.failures > 0 {
+        line.push_str(&format!(
+            "; {} solve(s) did not converge within the iteration limit and were repeated with the direct LU",
+            it.failures
+        ));
+    }
+    Some(line)
 }
 
 /// Where the wall time went: elements, contact, LU factorisations, substitutions,

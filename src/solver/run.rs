@@ -94,6 +94,8 @@ pub struct RunSummary {
     pub timings: Timings,
     /// Time spent handing records to the observer (serialising, writing, viewing).
     pub recording_s: f64,
+    /// Counts of the iterative linear solves (all zero when only direct LUs were used).
+    pub iterative: crate::assembly::iterative::IterativeStats,
 }
 
 fn log(
@@ -358,6 +360,7 @@ fn drive(
     summary.wall_time_s = started.elapsed().as_secs_f64();
     summary.symbolic_factorizations = asm.matrix.symbolic_factorizations;
     summary.timings = asm.timings();
+    summary.iterative = asm.matrix.iterative_stats();
     summary.recording_s = recording.as_secs_f64();
     Ok(summary)
 }

@@ -1,0 +1,59 @@
+//! Hertz line contact (the built-in `hertz` scene, 40 × 30 mesh: rigid cylinder R = 1 pressed
+//! into a Neo-Hookean block, penalty contact) solved twice: with faer's sparse LU and with
+//! the multigrid-preconditioned Krylov solver (`CONTRAIL_LINEAR_SOLVER=iterative`,
+//! `assembly::iterative`, relative residual 1e-9 per solve).
+//!
+//! Reference: the LU run. Tolerances: the Newton iterations within one of the LU run's (the
+//! inexact solves change the last iterate: measured 20 against 21) and no cut-back in
+//! either, every contact point's normal force equal to 1e-6 of the largest, and the
+//! iterative solver really used (every Newton solve converged by it, none handed to the
+//! LU). The symmetric tangent is indefinite in some iterates, so the solves are BiCGStab's.
+//!
+//! One test in this binary: the solver is chosen through a process-wide environment
+//! variable.
+
+mod common;
+
+#[test]
+fn iterative_and_direct_solvers_give_the_same_hertz_contact() {
+    let problem = common::scene("hertz", &["body.block.mesh.elements=[40, 30]"]);
+    let mut runs = Vec::new();
+    for solver in ["sparse", "iterative"] {
+        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
+        runs.push(common::solve_ok(&problem));
+    }
+    std::env::remove_var("CONTRAIL_LINEAR_SOLVER");
+    let ((lu, lu_mem), (it, it_mem)) = (&runs[0], &runs[1]);
+    let stats = it.iterative;
+    println!(
+        "LU: {} Newton iterations; iterative: {} ({} solves, {} CG, {} Krylov iterations, at most {}, {} builds, levels {:?}, complexity {:.2}, {} failures)",
+        lu.newton_iterations,
+        it.newton_iterations,
+        stats.solves,
+        stats.cg_solves,
+        stats.krylov_iterations,
+        stats.max_krylov_iterations,
+        stats.builds,
+        stats.levels,
+        stats.complexity,
+        stats.failures
+    );
+    assert_eq!(lu.iterative.solves, 0, "the LU run used the iterative solver");
+    assert!(stats.solves > 0 && stats.failures == 0, "{stats:?}");
+    assert!(stats.levels[1] > 0, "no coarse level: {stats:?}");
+    assert!(it.newton_iterations.abs_diff(lu.newton_iterations) <= 1);
+    assert_eq!((it.cutbacks, lu.cutbacks), (0, 0));
+    let (a, b) = (lu_mem.contact.last().unwrap(), it_mem.contact.last().unwrap());
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for (p, q) in a.iter().zip(b) {
+        assert!(
+            (p.normal_force - q.normal_force).abs() <= 1e-6 * scale,
+            "normal force at x = {}: {} (LU) vs {} (iterative)",
+            p.position[0],
+            p.normal_force,
+            q.normal_force
+        );
+    }
+}
