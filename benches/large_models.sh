@@ -9,6 +9,7 @@
 #   SIZES="100x4 316x15:2" benches/large_models.sh  # own meshes (NXxNY elements; `:K`: only
 #                                                   # the first K of the INCREMENTS increments)
 #   INCREMENTS=8 (default)  BIN=path/to/contrail  SCENE=scenes/punch-large.toml
+#   PUNCH_DEPTH=0.05 (the scene's punch travel, scaled for the `:K` runs)
 #
 # Memory is the peak resident set of the whole process (`/usr/bin/time -f %M`), divided by
 # the DOFs; time per iteration is the wall time of the solve (`wall time`, which includes
@@ -20,6 +21,7 @@ cd "$(dirname "$0")/.."
 BIN=${BIN:-${CARGO_TARGET_DIR:-target}/release/contrail}
 SCENE=${SCENE:-scenes/punch-large.toml}
 INCREMENTS=${INCREMENTS:-8}
+PUNCH_DEPTH=${PUNCH_DEPTH:-0.05} # the scene's `move = { y = -0.05 }` (for the `:K` runs)
 if [[ -n "${SIZES:-}" ]]; then
   read -r -a sizes <<<"$SIZES"
 elif [[ "${QUICK:-0}" == 1 ]]; then
@@ -40,7 +42,10 @@ for s in "${sizes[@]}"; do
   steps=(--set "stepping.increments=$INCREMENTS")
   if [[ "$s" == *:* ]]; then
     k=${s#*:}
-    steps=(--set "stepping.increments=$k" --set "stepping.end=$(awk -v k="$k" -v n="$INCREMENTS" 'BEGIN { print k / n }')")
+    # the scene's ramps reach their final values at `stepping.end`, so the first K of N
+    # increments are K increments of a punch moved K/N of the way (not a shorter `end`,
+    # which would squeeze the whole motion into K increments)
+    steps=(--set "stepping.increments=$k" --set "rigid.punch.move.y=$(awk -v k="$k" -v n="$INCREMENTS" -v d="$PUNCH_DEPTH" 'BEGIN { print -d * k / n }')")
   fi
   out="$tmp/$mesh.out"
   /usr/bin/time -f "rss_kb %M" "$BIN" run "$SCENE" --quiet \
