@@ -350,20 +350,13 @@ impl IterativePlan {
 
 #[cfg(test)]
 mod tests {
-    use super::super::sparse::{LinearSolver, SparseMatrix};
+    use super::super::sparse::{quad_grid_groups, LinearSolver, SparseMatrix};
 
     /// An `nx × ny` grid of 4-node cells with 2 unknowns per node and symmetric positive
     /// definite values (each cell adds `k (e eᵀ) + I/8`-like couplings), solved by the
     /// iterative and the direct solver.
     fn grid_system(nx: usize, ny: usize, unsymmetric: f64) -> (SparseMatrix, Vec<f64>) {
-        let node = |i: usize, j: usize| j * (nx + 1) + i;
-        let mut groups = Vec::new();
-        for j in 0..ny {
-            for i in 0..nx {
-                let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
-                groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
-            }
-        }
+        let groups = quad_grid_groups(nx, ny);
         // the left edge fixed: its unknowns are not equations (renumber the others)
         let nn = (nx + 1) * (ny + 1);
         let mut eq = vec![None; 2 * nn];

@@ -467,6 +467,21 @@ impl SparseMatrix {
 /// Systems with at least this many unknowns are factorised with faer's global parallelism.
 pub const PARALLEL_FROM: usize = 20_000;
 
+/// The unknowns of each cell of an `nx × ny` grid of 4-node cells, nodes numbered row by row
+/// and two unknowns per node (for tests).
+#[cfg(test)]
+pub(crate) fn quad_grid_groups(nx: usize, ny: usize) -> Vec<Vec<usize>> {
+    let node = |i: usize, j: usize| j * (nx + 1) + i;
+    let mut groups = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
+            groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
+        }
+    }
+    groups
+}
+
 #[cfg(test)]
 #[path = "sparse_tests.rs"]
 mod tests;

@@ -44,14 +44,7 @@ fn unsymmetric_solve_and_pattern_growth() {
 #[test]
 fn banded_and_sparse_lu_agree_on_a_strip() {
     let (nx, ny) = (30, 3);
-    let node = |i: usize, j: usize| j * (nx + 1) + i;
-    let mut groups = Vec::new();
-    for j in 0..ny {
-        for i in 0..nx {
-            let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
-            groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
-        }
-    }
+    let groups = quad_grid_groups(nx, ny);
     let n = 2 * (nx + 1) * (ny + 1);
     let fill = |a: &mut SparseMatrix| {
         for c in 0..n {
