@@ -86,9 +86,9 @@ impl Hierarchy {
             if p0.ncols * 10 > a.nrows * 9 {
                 break; // no longer coarsening
             }
-            let diag: Vec<f64> = a.diagonal().iter().map(|d| if *d != 0.0 { *d } else { 1.0 }).collect();
+            let diag = smoothing_diagonal(&a);
             let af = filtered.as_ref().unwrap_or(&a);
-            let fdiag: Vec<f64> = af.diagonal().iter().map(|d| if *d != 0.0 { *d } else { 1.0 }).collect();
+            let fdiag = smoothing_diagonal(af);
             let omega = 4.0 / (3.0 * spectral_radius_dinv_a(af, &fdiag));
             let p = af.matmul_then(&p0, |r, c, v| p0.get(r, c) - omega / fdiag[r] * v);
             let r = p.transpose();
@@ -142,11 +142,7 @@ impl Hierarchy {
             for (dst, v) in l.a.val.iter_mut().zip(val) {
                 *dst = v;
             }
-            l.diag =
-                l.a.diagonal()
-                    .iter()
-                    .map(|d| if *d != 0.0 { *d } else { 1.0 })
-                    .collect();
+            l.diag = smoothing_diagonal(&l.a);
         }
     }
 
@@ -187,6 +183,15 @@ impl Hierarchy {
         lev.p.mul_add(&coarse[0].x, &mut w.x);
         gauss_seidel(&lev.a, &lev.diag, &w.b, &mut w.x, true);
     }
+}
+
+/// The diagonal for Gauss–Seidel and the prolongator smoothing, 1 where it is zero (a row
+/// the pattern keeps but nothing fills).
+fn smoothing_diagonal(a: &Csr) -> Vec<f64> {
+    a.diagonal()
+        .into_iter()
+        .map(|d| if d != 0.0 { d } else { 1.0 })
+        .collect()
 }
 
 /// One Gauss–Seidel sweep on `A x = b`, forward or backward.

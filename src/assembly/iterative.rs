@@ -73,6 +73,9 @@ pub struct IterativePlan {
     /// `usize::MAX` when that is not stored; and the slots of the diagonal.
     mirror: Vec<usize>,
     diag_slot: Vec<usize>,
+    /// Every entry has its transposed one stored and every diagonal entry is stored (the
+    /// symmetry test and the multigrid need both).
+    structurally_symmetric: bool,
     nodes: Vec<MeshNode>,
     hierarchy: Option<Mutex<Hierarchy>>,
     build_time: Duration,
@@ -91,7 +94,10 @@ struct Operator<'a>(&'a Csr);
 
 /// A V-cycle as a faer preconditioner.
 #[derive(Debug)]
-struct VCycle<'a>(&'a Mutex<Hierarchy>);
+struct VCycle<'a> {
+    hierarchy: &'a Mutex<Hierarchy>,
+    n: usize,
+}
 
 fn column(m: MatRef<'_, f64>) -> &[f64] {
     m.col(0).try_as_col_major().expect("contiguous column").as_slice()
@@ -127,13 +133,13 @@ impl LinOp<f64> for VCycle<'_> {
         StackReq::EMPTY
     }
     fn nrows(&self) -> usize {
-        self.0.lock().map_or(0, |h| h.sizes()[0])
+        self.n
     }
     fn ncols(&self) -> usize {
         self.nrows()
     }
     fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        let mut h = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        let mut h = self.hierarchy.lock().unwrap_or_else(|e| e.into_inner());
         h.apply(column(rhs), column_mut(out));
     }
     fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
@@ -191,6 +197,7 @@ impl IterativePlan {
         IterativePlan {
             fine,
             from_csc,
+            structurally_symmetric: !diag_slot.contains(&usize::MAX) && !mirror.contains(&usize::MAX),
             mirror,
             diag_slot,
             nodes: nodes.to_vec(),
@@ -208,7 +215,6 @@ impl IterativePlan {
     /// Whether the values are symmetric: `|a_rc − a_cr| ≤ 1e-10 √(|a_rr a_cc|)` everywhere.
     fn symmetric(&self, values: &[f64]) -> bool {
         let d = |i: usize| values[self.diag_slot[i]].abs();
-
         (0..self.fine.nrows).all(|r| {
             (self.fine.ptr[r]..self.fine.ptr[r + 1]).all(|k| {
                 let (c, slot) = (self.fine.idx[k], self.from_csc[k]);
@@ -220,7 +226,7 @@ impl IterativePlan {
     /// Solve `A x = b` in place (`values` in compressed-column order); returns the time spent
     /// building the preconditioner.
     pub fn solve(&mut self, values: &[f64], b: &mut [f64]) -> Result<Duration, IterativeFailure> {
-        if self.diag_slot.contains(&usize::MAX) || self.mirror.contains(&usize::MAX) {
+        if !self.structurally_symmetric {
             self.stats.failures += 1;
             return Err(IterativeFailure {
                 method: "the iterative solver (pattern not structurally symmetric)",
@@ -233,18 +239,21 @@ impl IterativePlan {
         }
         let symmetric = self.symmetric(values);
         let mut setup = Duration::ZERO;
-        let fresh_needed = self.hierarchy.is_none() || self.lag_cost > self.build_time;
-        if fresh_needed {
+        let mut fresh = self.hierarchy.is_none() || self.lag_cost > self.build_time;
+        if fresh {
             setup += self.build();
         } else if let Some(h) = &self.hierarchy {
             h.lock()
                 .unwrap_or_else(|e| e.into_inner())
                 .set_fine_values(self.fine.val.iter().copied());
         }
-        let started = Instant::now();
+        let mut started = Instant::now();
         let mut outcome = self.krylov(symmetric, b);
-        if outcome.is_err() && !fresh_needed {
+        if outcome.is_err() && !fresh {
+            // the kept coarse levels may be what failed: once more with a new hierarchy
             setup += self.build();
+            fresh = true;
+            started = Instant::now();
             outcome = self.krylov(symmetric, b);
         }
         let elapsed = started.elapsed();
@@ -254,7 +263,7 @@ impl IterativePlan {
                 self.stats.cg_solves += usize::from(cg);
                 self.stats.krylov_iterations += iterations;
                 self.stats.max_krylov_iterations = self.stats.max_krylov_iterations.max(iterations);
-                if fresh_needed {
+                if fresh {
                     self.iterations_after_build = iterations;
                 } else if iterations > self.iterations_after_build {
                     let per = elapsed / iterations.max(1) as u32;
@@ -290,9 +299,10 @@ impl IterativePlan {
     }
 
     /// One preconditioned Krylov solve of `A x = b` into `self.x`: conjugate gradients when
-    /// `symmetric` (BiCGStab if they fail: a symmetric tangent may be indefinite — measured on the `hertz` scene, where unpreconditioned CG meets a
-    /// direction of negative curvature too — e.g. a penalty point deep inside a convex master
-    /// in the first iterate of an increment) and BiCGStab otherwise; the iteration count (of the method that succeeded) and whether it was CG.
+    /// `symmetric`, BiCGStab otherwise and when CG fails (a symmetric tangent may be
+    /// indefinite, e.g. a penalty point deep inside a convex master in the first iterate of
+    /// an increment; on the `hertz` scene unpreconditioned CG meets negative curvature too).
+    /// Returns the iterations of the method that succeeded and whether it was CG.
     fn krylov(&mut self, symmetric: bool, b: &[f64]) -> Result<(usize, bool), IterativeFailure> {
         let Some(h) = &self.hierarchy else {
             return Err(IterativeFailure {
@@ -305,7 +315,11 @@ impl IterativePlan {
         self.x.fill(0.0);
         let par = Par::Seq;
         let stack = MemStack::new(&mut self.scratch);
-        let (a, m) = (Operator(&self.fine), VCycle(h));
+        let m = VCycle {
+            hierarchy: h,
+            n: self.fine.nrows,
+        };
+        let a = Operator(&self.fine);
         if symmetric {
             // x = 0, but not `InitialGuessStatus::Zero`: faer 0.24's CG then leaves its first
             // residual uninitialised (and so does its BiCGStab)
