@@ -10,10 +10,13 @@
 //! Tolerance: none (a count). Per-increment work (copying the state, the records) is not
 //! part of this claim. The same on the 120×4 mesh (480 elements), whose element kernels run
 //! half on the assembler's helper thread (`assembly/helper.rs`; the allocator counts every
-//! thread's allocations).
+//! thread's allocations). And on the frictionless 48×2 strip with the banded LU switched off,
+//! whose symmetric tangent is factorised by faer's sparse `LDLᵀ` (`assembly/ldlt.rs`:
+//! symmetry check, factorisation, solve and backward-error check).
 
 mod common;
 
+use contrail::assembly::sparse::LinearSolver;
 use contrail::assembly::Assembler;
 use contrail::contact::law::ContactState;
 use contrail::solver::newton::{solve_increment, Workspace};
@@ -44,14 +47,18 @@ static GLOBAL: Counting = Counting;
 
 /// Allocations made by 20 steady-state iterations on the strip meshed `mesh` (see above);
 /// also whether its assembler evaluated the elements on more than one thread.
-fn allocations_in_steady_state(mesh: &str) -> (usize, bool) {
+fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver>) -> (usize, bool, Assembler) {
     // the count is process-wide: one test at a time
     static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
     let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let mesh = format!("body.strip.mesh.elements={mesh}");
-    let problem = common::scene("strip-channel", &[mesh.as_str(), "contact.mu=0.2"]);
+    let mu = format!("contact.mu={mu}");
+    let problem = common::scene("strip-channel", &[mesh.as_str(), mu.as_str()]);
     let model = &problem.model;
     let mut asm = Assembler::new(model);
+    if let Some(s) = solver {
+        asm.matrix.set_solver(s);
+    }
     let mut state = TrialState::new(model);
     let mut ws = Workspace::default();
     // v = 0.02 of 12 in one increment from rest: the strip bends over C
@@ -90,19 +97,21 @@ fn allocations_in_steady_state(mesh: &str) -> (usize, bool) {
         asm.free_residual(&mut r);
         asm.matrix.solve(&mut r).unwrap();
     }
-    (ALLOCATIONS.load(Ordering::Relaxed) - before, asm.is_parallel())
+    let made = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    let parallel = asm.is_parallel();
+    (made, parallel, asm)
 }
 
 #[test]
 fn a_steady_state_newton_iteration_allocates_nothing() {
-    let (made, parallel) = allocations_in_steady_state("[48,2]");
+    let (made, parallel, _) = allocations_in_steady_state("[48,2]", "0.2", None);
     assert!(!parallel, "96 elements are assembled on the calling thread");
     assert_eq!(made, 0, "allocations in 20 steady-state iterations");
 }
 
 #[test]
 fn a_steady_state_iteration_with_the_helper_thread_allocates_nothing() {
-    let (made, parallel) = allocations_in_steady_state("[120,4]");
+    let (made, parallel, _) = allocations_in_steady_state("[120,4]", "0.2", None);
     // the helper runs unless this process has a single thread (RAYON_NUM_THREADS=1, one core)
     assert!(
         parallel || rayon::current_num_threads() == 1,
@@ -112,4 +121,12 @@ fn a_steady_state_iteration_with_the_helper_thread_allocates_nothing() {
         made, 0,
         "allocations in 20 steady-state iterations (helper thread included)"
     );
+}
+
+#[test]
+fn a_steady_state_iteration_with_the_symmetric_factorisation_allocates_nothing() {
+    let (made, _, asm) = allocations_in_steady_state("[48,2]", "0", Some(LinearSolver::General));
+    let stats = asm.matrix.ldlt_stats();
+    assert!(stats.solves >= 20 && stats.fallbacks == 0, "LDLT used: {stats:?}");
+    assert_eq!(made, 0, "allocations in 20 steady-state iterations (LDLT)");
 }

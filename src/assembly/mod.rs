@@ -4,9 +4,12 @@
 pub mod aggregation;
 pub mod amg;
 pub mod band;
+pub mod band_plan;
 pub mod csr;
+pub mod faer_lu;
 pub mod helper;
 pub mod iterative;
+pub mod ldlt;
 pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};

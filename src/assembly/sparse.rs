@@ -1,14 +1,14 @@
 //! Global sparse matrix in compressed-column form: the pattern is built once (and only grows
-//! when contact couples new DOFs), values are refilled each iteration, and the symbolic LU
-//! factorisation (faer) is reused until the pattern changes.
+//! when contact couples new DOFs), values are refilled each iteration, and the symbolic
+//! factorisation (banded LU, faer's `LDLᵀ` or LU) is reused until the pattern changes.
 
 use super::aggregation::MeshNode;
-use super::band::{band_widths, reverse_cuthill_mckee, supervariable_rcm, BandLu, Root};
+use super::band_plan::BandPlan;
+use super::faer_lu::LuPlan;
 use super::iterative::{IterativePlan, IterativeStats};
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, Mat, Par};
+use super::ldlt::{LdltPlan, LdltStats};
+use faer::sparse::SymbolicSparseColMat;
+use faer::Par;
 use std::time::{Duration, Instant};
 
 /// Failure of the linear solve.
@@ -25,11 +25,15 @@ pub enum LinearError {
 /// Which direct solver factorises the matrix.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LinearSolver {
-    /// Banded LU after reverse Cuthill–McKee when the band is narrow, faer's sparse LU
-    /// otherwise (default).
+    /// Banded LU after reverse Cuthill–McKee when the band is narrow; otherwise faer's sparse
+    /// `LDLᵀ` (AMD ordering) while the matrix is symmetric ([`super::ldlt`]), faer's sparse
+    /// LU when it is not (default).
     Auto,
     /// Always faer's sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`, for comparisons).
     Sparse,
+    /// faer's `LDLᵀ` or LU, never the banded LU (`CONTRAIL_LINEAR_SOLVER=general`, for
+    /// comparisons).
+    General,
     /// The multigrid-preconditioned Krylov solver ([`super::iterative`]) when the matrix
     /// knows its nodes (`CONTRAIL_LINEAR_SOLVER=iterative`), whatever the size; a solve it
     /// cannot converge falls back to faer's LU.
@@ -38,63 +42,16 @@ pub enum LinearSolver {
 
 impl LinearSolver {
     /// The choice from the environment variable `CONTRAIL_LINEAR_SOLVER` (`sparse`,
-    /// `iterative` or `auto`; anything else means `auto`): a diagnostic switch for
+    /// `general`, `iterative` or `auto`; anything else means `auto`): a diagnostic switch for
     /// benchmarks, not a setting of a study (the solvers give the same solution to round-off,
     /// the iterative one to its tolerance, [`super::iterative::RELATIVE_TOLERANCE`]).
     pub fn from_env() -> Self {
         match std::env::var("CONTRAIL_LINEAR_SOLVER").as_deref() {
             Ok("sparse") => LinearSolver::Sparse,
+            Ok("general") => LinearSolver::General,
             Ok("iterative") => LinearSolver::Iterative,
             _ => LinearSolver::Auto,
         }
-    }
-}
-
-/// The banded factorisation of a pattern: RCM permutation and the band slot of each stored
-/// entry.
-struct BandPlan {
-    lu: BandLu,
-    /// `perm[new] = old`
-    perm: Vec<usize>,
-    /// band slot of `values[k]`
-    slots: Vec<usize>,
-    rhs: Vec<f64>,
-}
-
-impl BandPlan {
-    /// A plan if the RCM-ordered pattern has a narrow band (see [`BandLu::worth_it`]).
-    fn new(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
-        // RCM on the supervariables (nodes) from a far level or a node, and on the unknowns:
-        // the narrowest band wins
-        let candidates = [
-            supervariable_rcm(n, col_ptr, row_idx, Root::FarLevel),
-            supervariable_rcm(n, col_ptr, row_idx, Root::Node),
-            reverse_cuthill_mckee(n, col_ptr, row_idx, Root::Node),
-        ];
-        let (perm, (kl, ku)) = candidates
-            .into_iter()
-            .map(|p| {
-                let w = band_widths(n, col_ptr, row_idx, &p);
-                (p, w)
-            })
-            .min_by_key(|(_, (kl, ku))| kl * ku)
-            .expect("three candidates");
-        let mut inv = vec![0; n];
-        for (new, &old) in perm.iter().enumerate() {
-            inv[old] = new;
-        }
-        let entries = || (0..n).flat_map(|c| row_idx[col_ptr[c]..col_ptr[c + 1]].iter().map(move |&r| (r, c)));
-        if !BandLu::worth_it(n, kl.max(ku)) {
-            return None;
-        }
-        let lu = BandLu::new(n, kl, ku);
-        let slots = entries().map(|(r, c)| lu.slot(inv[r], inv[c])).collect();
-        Some(BandPlan {
-            lu,
-            perm,
-            slots,
-            rhs: vec![0.0; n],
-        })
     }
 }
 
@@ -107,12 +64,13 @@ pub struct SparseMatrix {
     row_idx: Vec<usize>,
     pub values: Vec<f64>,
     symbolic: Option<SymbolicSparseColMat<usize>>,
-    lu_symbolic: Option<SymbolicLu<usize>>,
-    /// Numeric factors, workspace and right-hand side, kept across iterations so that a
-    /// factorisation allocates nothing once the pattern is fixed.
-    numeric: NumericLu<usize, f64>,
-    scratch: MemBuffer,
-    rhs: Mat<f64>,
+    /// faer's LU of the current pattern, once needed.
+    lu: Option<LuPlan>,
+    /// faer's `LDLᵀ` of the current pattern while its values are symmetric (decided at the
+    /// first solve of a pattern, dropped at the first solve it cannot make).
+    ldlt: Option<LdltPlan>,
+    ldlt_decided: bool,
+    ldlt_stats: LdltStats,
     solver: LinearSolver,
     /// The pattern given at construction (the elements'), which [`Self::extend`] grows.
     base: Vec<Vec<usize>>,
@@ -167,10 +125,10 @@ impl SparseMatrix {
             row_idx: Vec::new(),
             values: Vec::new(),
             symbolic: None,
-            lu_symbolic: None,
-            numeric: NumericLu::new(),
-            scratch: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
-            rhs: Mat::zeros(0, 1),
+            lu: None,
+            ldlt: None,
+            ldlt_decided: false,
+            ldlt_stats: LdltStats::default(),
             solver: LinearSolver::from_env(),
             band: None,
             band_decided: false,
@@ -200,10 +158,11 @@ impl SparseMatrix {
         }
         self.values = vec![0.0; self.row_idx.len()];
         self.symbolic = None;
-        self.lu_symbolic = None;
+        self.lu = None;
         self.band = None;
         self.band_decided = false;
         self.retire_iterative();
+        self.retire_ldlt();
     }
 
     /// Choose the solver (resets the factorisation).
@@ -212,6 +171,7 @@ impl SparseMatrix {
         self.band = None;
         self.band_decided = false;
         self.retire_iterative();
+        self.retire_ldlt();
     }
 
     /// Give the free equations `(x, y)` and reference position of each mesh node: the
@@ -248,6 +208,17 @@ impl SparseMatrix {
             self.iterative_stats = self.iterative_stats();
             self.iterative = None;
         }
+    }
+
+    /// Counts of the symmetric (`LDLᵀ`) factorisations so far.
+    pub fn ldlt_stats(&self) -> LdltStats {
+        self.ldlt_stats
+    }
+
+    /// Drop the `LDLᵀ` plan of the current pattern (the next pattern decides again).
+    fn retire_ldlt(&mut self) {
+        self.ldlt = None;
+        self.ldlt_decided = false;
     }
 
     /// The half-bandwidths `(kl, ku)` of the banded factorisation in use, if one is.
@@ -368,8 +339,8 @@ impl SparseMatrix {
             }
         } else if self.band.is_some() {
             self.solve_band(started, b)?;
-        } else {
-            self.solve_sparse(started, b)?;
+        } else if !self.solve_symmetric(started, b) {
+            self.solve_sparse(Instant::now(), b)?;
         }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(LinearError::NonFinite);
@@ -382,83 +353,88 @@ impl SparseMatrix {
         let Some(plan) = self.band.as_mut() else {
             return Err(LinearError::Factorization("no banded factorisation planned".into()));
         };
-        plan.lu.clear();
-        for (&s, &v) in plan.slots.iter().zip(&self.values) {
-            plan.lu.add(s, v);
-        }
-        let factored = plan.lu.factorize();
+        let factored = plan.factorize(&self.values);
         self.factorizations += 1;
         let done = Instant::now();
         self.factor_time += done - started;
         factored?;
-        for (r, &old) in plan.rhs.iter_mut().zip(&plan.perm) {
-            *r = b[old];
-        }
-        plan.lu.solve(&mut plan.rhs);
-        for (r, &old) in plan.rhs.iter().zip(&plan.perm) {
-            b[old] = *r;
-        }
+        plan.solve(b);
         self.solve_time += done.elapsed();
         Ok(())
     }
 
-    /// Factorise and solve with faer's sparse LU (symbolic analysis reused).
-    fn solve_sparse(&mut self, started: Instant, b: &mut [f64]) -> Result<(), LinearError> {
-        let par = if self.n < PARALLEL_FROM {
+    /// The parallelism of faer's factorisations: sequential below [`PARALLEL_FROM`].
+    fn par(&self) -> Par {
+        if self.n < PARALLEL_FROM {
             Par::Seq
         } else {
             faer::get_global_parallelism()
-        };
-        if self.symbolic.is_none() {
-            self.symbolic = Some(SymbolicSparseColMat::new_checked(
-                self.n,
-                self.n,
-                self.col_ptr.clone(),
-                None,
-                self.row_idx.clone(),
-            ));
         }
-        let sym = self.symbolic.as_ref().expect("set above");
-        if self.lu_symbolic.is_none() {
-            let lu = factorize_symbolic_lu(sym.as_ref(), Default::default())
-                .map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
-            let req = lu
-                .factorize_numeric_lu_scratch::<f64>(par, Default::default())
-                .or(lu.solve_in_place_scratch::<f64>(1, par));
-            self.scratch = MemBuffer::try_new(req).map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
-            self.lu_symbolic = Some(lu);
-            self.numeric = NumericLu::new();
+    }
+
+    /// The pattern in faer's form (built once per pattern).
+    fn symbolic(&mut self) -> &SymbolicSparseColMat<usize> {
+        self.symbolic.get_or_insert_with(|| {
+            SymbolicSparseColMat::new_checked(self.n, self.n, self.col_ptr.clone(), None, self.row_idx.clone())
+        })
+    }
+
+    /// Factorise and solve with faer's `LDLᵀ` when the solver is `Auto` or `General`, the
+    /// pattern is structurally symmetric and the values are symmetric; returns whether it
+    /// did (`b` is untouched when not). The first solve it cannot make retires the plan for
+    /// the rest of the pattern's life (its time counts as factorisation time).
+    fn solve_symmetric(&mut self, started: Instant, b: &mut [f64]) -> bool {
+        if !matches!(self.solver, LinearSolver::Auto | LinearSolver::General) {
+            return false;
+        }
+        let par = self.par();
+        if !self.ldlt_decided {
+            self.ldlt_decided = true;
+            self.symbolic();
+            self.ldlt = LdltPlan::new(self.n, &self.col_ptr, &self.row_idx, &self.values, par);
+            if let Some(plan) = &self.ldlt {
+                self.symbolic_factorizations += 1;
+                self.ldlt_stats.plans += 1;
+                self.ldlt_stats.factor_nnz = plan.factor_nnz();
+            }
+        }
+        let (Some(plan), Some(sym)) = (self.ldlt.as_mut(), self.symbolic.as_ref()) else {
+            return false;
+        };
+        let outcome = plan.factorize_and_solve(sym.as_ref(), &self.values, b, par);
+        self.factor_time += started.elapsed();
+        match outcome {
+            Ok(solve_time) => {
+                self.factorizations += 1;
+                self.ldlt_stats.solves += 1;
+                self.factor_time -= solve_time;
+                self.solve_time += solve_time;
+                true
+            }
+            Err(failure) => {
+                self.ldlt_stats.fallbacks += 1;
+                self.ldlt_stats.last_failure = Some(failure);
+                self.ldlt = None;
+                false
+            }
+        }
+    }
+
+    /// Factorise and solve with faer's sparse LU (symbolic analysis reused).
+    fn solve_sparse(&mut self, started: Instant, b: &mut [f64]) -> Result<(), LinearError> {
+        let par = self.par();
+        self.symbolic();
+        let sym = self.symbolic.as_ref().expect("set above").as_ref();
+        if self.lu.is_none() {
+            self.lu = Some(LuPlan::new(sym, par)?);
             self.symbolic_factorizations += 1;
         }
-        let lu_sym = self.lu_symbolic.as_ref().expect("set above");
-        let mat = SparseColMatRef::new(sym.as_ref(), &self.values);
-        lu_sym
-            .factorize_numeric_lu(
-                &mut self.numeric,
-                mat,
-                par,
-                MemStack::new(&mut self.scratch),
-                Default::default(),
-            )
-            .map_err(|e| LinearError::Factorization(format!("{e:?}")))?;
+        let lu = self.lu.as_mut().expect("set above");
+        lu.factorize(sym, &self.values, par)?;
         self.factorizations += 1;
         let factored = Instant::now();
         self.factor_time += factored - started;
-        if self.rhs.nrows() != self.n {
-            self.rhs = Mat::zeros(self.n, 1);
-        }
-        for (i, bi) in b.iter().enumerate() {
-            self.rhs[(i, 0)] = *bi;
-        }
-        LuRef::new_unchecked(lu_sym, &self.numeric).solve_in_place_with_conj(
-            Conj::No,
-            self.rhs.as_mut(),
-            par,
-            MemStack::new(&mut self.scratch),
-        );
-        for (i, bi) in b.iter_mut().enumerate() {
-            *bi = self.rhs[(i, 0)];
-        }
+        lu.solve(b, par);
         self.solve_time += factored.elapsed();
         Ok(())
     }

@@ -81,3 +81,103 @@ fn banded_and_sparse_lu_agree_on_a_strip() {
         assert!((solutions[1][i] - xi).abs() < 1e-12, "sparse x[{i}]");
     }
 }
+
+/// Fill a grid pattern with symmetric, diagonally dominant values (`sym_part = 1`) plus an
+/// antisymmetric part of size `skew`.
+fn fill_grid(a: &mut SparseMatrix, diagonal: f64, skew: f64) {
+    for c in 0..a.n {
+        for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+            let r = a.row_idx[k];
+            let (lo, hi) = (r.min(c), r.max(c));
+            let sym = ((3 * lo + 7 * hi) % 11) as f64 / 11.0 - 0.5;
+            let sign = if r < c { 1.0 } else { -1.0 };
+            a.values[k] = if r == c { diagonal } else { sym + sign * skew };
+        }
+    }
+}
+
+/// `LDLᵀ` on a symmetric matrix: same solution as the LU, one plan, no fallback; the factor
+/// stores less than the LU would (only one triangle).
+#[test]
+fn symmetric_matrix_is_solved_by_ldlt() {
+    let (nx, ny) = (20, 20);
+    let n = 2 * (nx + 1) * (ny + 1);
+    let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
+    let mut solutions = Vec::new();
+    for solver in [LinearSolver::General, LinearSolver::Sparse] {
+        let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
+        a.set_solver(solver);
+        fill_grid(&mut a, 12.0, 0.0);
+        let mut b = vec![0.0; n];
+        a.mul(&x, &mut b);
+        a.solve(&mut b).unwrap();
+        let s = a.ldlt_stats();
+        if solver == LinearSolver::General {
+            assert_eq!((s.plans, s.solves, s.fallbacks), (1, 1, 0), "{s:?}");
+            assert!(s.factor_nnz > a.nnz() / 2);
+        } else {
+            assert_eq!(s, Default::default());
+        }
+        solutions.push(b);
+    }
+    for (i, xi) in x.iter().enumerate() {
+        assert!((solutions[0][i] - xi).abs() < 1e-12, "LDLT x[{i}]");
+        assert!((solutions[1][i] - xi).abs() < 1e-12, "LU x[{i}]");
+    }
+}
+
+/// An unsymmetric matrix never gets a plan; one that becomes unsymmetric retires its plan
+/// and is solved by the LU, correctly.
+#[test]
+fn unsymmetric_values_fall_back_to_the_lu() {
+    let (nx, ny) = (6, 6);
+    let n = 2 * (nx + 1) * (ny + 1);
+    let x: Vec<f64> = (0..n).map(|i| 1.0 + (0.7 * i as f64).sin()).collect();
+    let solve = |a: &mut SparseMatrix| {
+        let mut b = vec![0.0; n];
+        a.mul(&x, &mut b);
+        a.solve(&mut b).unwrap();
+        let err = b.iter().zip(&x).fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+        assert!(err < 1e-12, "{err}");
+    };
+    let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
+    a.set_solver(LinearSolver::General);
+    fill_grid(&mut a, 12.0, 0.1);
+    solve(&mut a);
+    assert_eq!(a.ldlt_stats().plans, 0);
+
+    let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
+    a.set_solver(LinearSolver::General);
+    fill_grid(&mut a, 12.0, 0.0);
+    solve(&mut a);
+    fill_grid(&mut a, 12.0, 1e-6); // a slip tangent appears
+    solve(&mut a);
+    solve(&mut a);
+    let s = a.ldlt_stats();
+    assert_eq!((s.plans, s.solves, s.fallbacks), (1, 1, 1), "{s:?}");
+    assert_eq!(s.last_failure, Some(super::super::ldlt::LdltFailure::Unsymmetric));
+    assert_eq!(a.factorizations, 3);
+}
+
+/// A symmetric indefinite matrix with zero diagonal (no `LDLᵀ` without pivoting exists) is
+/// solved by the LU after the symmetric attempt fails.
+#[test]
+fn indefinite_matrix_without_diagonal_pivots_falls_back() {
+    let mut groups = vec![vec![0, 1], vec![2, 3]].into_iter();
+    let mut a = SparseMatrix::new(4, &mut groups);
+    a.set_solver(LinearSolver::General);
+    // A = [[0,1],[1,0]] ⊕ [[0,2],[2,0]]
+    for (r, c, v) in [(0, 1, 1.0), (1, 0, 1.0), (2, 3, 2.0), (3, 2, 2.0)] {
+        let k = a.index(r, c).unwrap();
+        a.values[k] = v;
+    }
+    let x = [1.0, -2.0, 0.5, 3.0];
+    let mut b = [0.0; 4];
+    a.mul(&x, &mut b);
+    a.solve(&mut b).unwrap();
+    for i in 0..4 {
+        assert!((b[i] - x[i]).abs() < 1e-14, "x[{i}] = {}", b[i]);
+    }
+    let s = a.ldlt_stats();
+    assert_eq!((s.plans, s.solves, s.fallbacks), (1, 0, 1), "{s:?}");
+}

@@ -185,6 +185,9 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         if let Some(line) = iterative_line(&s.iterative) {
             row(&mut o, "linear solver", line);
         }
+        if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
+            row(&mut o, "linear solver", line);
+        }
     }
     for p in &a.out {
         row(&mut o, "written", p.display().to_string());
@@ -243,6 +246,30 @@ fn iterative_line(it: &contrail::assembly::iterative::IterativeStats) -> Option<
         line.push_str(&format!(
             "; {} solve(s) did not converge within the iteration limit and were repeated with the direct LU",
             it.failures
+        ));
+    }
+    Some(line)
+}
+
+/// The symmetric factorisations' line, when any was planned.
+fn ldlt_line(l: &contrail::assembly::ldlt::LdltStats, factorizations: usize) -> Option<String> {
+    if l.plans == 0 {
+        return None;
+    }
+    let mut line = format!(
+        "sparse LDLᵀ (AMD ordering; the tangent is symmetric) for {} of {} factorisations, \
+         {} values in the factor",
+        l.solves, factorizations, l.factor_nnz
+    );
+    if let Some(f) = l.last_failure {
+        let why = match f {
+            contrail::assembly::ldlt::LdltFailure::Unsymmetric => "the tangent became unsymmetric".to_string(),
+            contrail::assembly::ldlt::LdltFailure::ZeroPivot => "a zero pivot".to_string(),
+            contrail::assembly::ldlt::LdltFailure::Inaccurate(eta) => format!("backward error {eta:.1e}"),
+        };
+        line.push_str(&format!(
+            "; {} fallback(s) to the LU (last: {why}), after which the LU served the rest of that pattern",
+            l.fallbacks
         ));
     }
     Some(line)

@@ -96,6 +96,8 @@ pub struct RunSummary {
     pub recording_s: f64,
     /// Counts of the iterative linear solves (all zero when only direct LUs were used).
     pub iterative: crate::assembly::iterative::IterativeStats,
+    /// Counts of the symmetric (`LDLᵀ`) factorisations (all zero when none was made).
+    pub ldlt: crate::assembly::ldlt::LdltStats,
 }
 
 fn log(
@@ -361,6 +363,7 @@ fn drive(
     summary.symbolic_factorizations = asm.matrix.symbolic_factorizations;
     summary.timings = asm.timings();
     summary.iterative = asm.matrix.iterative_stats();
+    summary.ldlt = asm.matrix.ldlt_stats();
     summary.recording_s = recording.as_secs_f64();
     Ok(summary)
 }

@@ -1,0 +1,73 @@
+//! Hertz line contact (the built-in `hertz` scene, 40 × 30 mesh: rigid cylinder R = 1 pressed
+//! into a Neo-Hookean block, frictionless penalty contact) solved with faer's sparse `LDLᵀ`
+//! (AMD ordering, chosen because the tangent is symmetric; `assembly::ldlt`) and with faer's
+//! sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`); and the frictional `block-slide` scene
+//! (μ = 0.3, slip tangents are unsymmetric) the same two ways.
+//!
+//! Reference: the LU runs. Tolerances: Hertz — every factorisation of the `LDLᵀ` run made
+//! by it (no fallback), the same Newton iteration count, no cut-back, every contact point's
+//! normal force equal to 1e-9 of the largest (the two factorisations differ in round-off
+//! only). Block slide — the `LDLᵀ` plan is retired at the first unsymmetric tangent (the
+//! fallback reason is `Unsymmetric`), the LU serves the rest, and the final displacements
+//! equal the LU run's to 1e-9 of the largest.
+//!
+//! One test in this binary: the solver is chosen through a process-wide environment
+//! variable.
+
+mod common;
+
+use contrail::assembly::ldlt::LdltFailure;
+
+#[test]
+fn symmetric_and_general_factorisations_give_the_same_contact() {
+    // Hertz: symmetric throughout
+    let problem = common::scene("hertz", &["body.block.mesh.elements=[40, 30]"]);
+    let mut runs = Vec::new();
+    for solver in ["sparse", "general"] {
+        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
+        runs.push(common::solve_ok(&problem));
+    }
+    let ((lu, lu_mem), (ld, ld_mem)) = (&runs[0], &runs[1]);
+    println!(
+        "Hertz: LU {} Newton iterations, LDLT {} ({:?})",
+        lu.newton_iterations, ld.newton_iterations, ld.ldlt
+    );
+    assert_eq!(lu.ldlt.solves, 0, "the LU run used LDLT");
+    assert_eq!(ld.ldlt.solves, ld.timings.factorizations, "{:?}", ld.ldlt);
+    assert_eq!(ld.ldlt.fallbacks, 0);
+    assert_eq!(ld.newton_iterations, lu.newton_iterations);
+    assert_eq!((ld.cutbacks, lu.cutbacks), (0, 0));
+    let (a, b) = (lu_mem.contact.last().unwrap(), ld_mem.contact.last().unwrap());
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for (p, q) in a.iter().zip(b) {
+        assert!(
+            (p.normal_force - q.normal_force).abs() <= 1e-9 * scale,
+            "normal force at x = {}: {} (LU) vs {} (LDLT)",
+            p.position[0],
+            p.normal_force,
+            q.normal_force
+        );
+    }
+
+    // block slide: friction makes the tangent unsymmetric once the block slips
+    let problem = common::scene("block-slide", &[]);
+    let mut runs = Vec::new();
+    for solver in ["sparse", "general"] {
+        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
+        runs.push(common::solve_ok(&problem));
+    }
+    std::env::remove_var("CONTRAIL_LINEAR_SOLVER");
+    let ((lu, lu_mem), (ld, ld_mem)) = (&runs[0], &runs[1]);
+    println!("block slide: {:?}", ld.ldlt);
+    assert!(ld.ldlt.fallbacks >= 1, "{:?}", ld.ldlt);
+    assert_eq!(ld.ldlt.last_failure, Some(LdltFailure::Unsymmetric));
+    assert!(ld.ldlt.solves < ld.timings.factorizations);
+    let scale = lu_mem.final_u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 0.0);
+    for (i, (p, q)) in lu_mem.final_u.iter().zip(&ld_mem.final_u).enumerate() {
+        assert!((p - q).abs() <= 1e-9 * scale, "u[{i}]: {p} (LU) vs {q}");
+    }
+    assert_eq!(ld.newton_iterations, lu.newton_iterations);
+}
