@@ -303,11 +303,13 @@ impl SparseMatrix {
         }
     }
 
-    /// Solve `A x = b` in place (LU with partial pivoting, ordering and symbolic analysis
-    /// reused while the pattern is unchanged): a banded LU after reverse Cuthill–McKee when
-    /// the band is narrow (see [`super::band`]), otherwise faer's sparse LU, sequential below
-    /// [`PARALLEL_FROM`] unknowns (threads cost more than they save on small systems) and with
-    /// faer's global parallelism above.
+    /// Solve `A x = b` in place (ordering and symbolic analysis reused while the pattern is
+    /// unchanged): a banded LU with partial pivoting after reverse Cuthill–McKee when the band
+    /// is narrow (see [`super::band`]); otherwise faer's sparse `LDLᵀ` with AMD ordering while
+    /// the matrix is symmetric ([`super::ldlt`]) and faer's sparse LU (COLAMD, partial
+    /// pivoting) when it is not; faer's factorisations run sequentially below
+    /// [`PARALLEL_FROM`] unknowns (threads cost more than they save on small systems) and
+    /// with faer's global parallelism above.
     pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
         let started = Instant::now();
         if !self.band_decided {
