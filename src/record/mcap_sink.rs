@@ -10,7 +10,7 @@
 
 use super::atomic_file::{AtomicFile, FirstError, Guarded};
 use super::messages::{ContactPointMessageRef, CrossingMessage, ModelRecord, PositionsMessage};
-use super::pressure::{profiles, PressureRecord};
+use super::pressure::{profiles, PressureLayout, PressureRecord};
 use super::schemas::{self, CHANNELS};
 use super::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use crate::model::Model;
@@ -96,6 +96,8 @@ pub struct McapSink<W: Write + Seek> {
     pending_positions: Option<PositionsMessage>,
     /// Pressure profiles of the last increment when they were thinned away (likewise).
     pending_pressure: Vec<PressureRecord>,
+    /// The model's pressure layout, worked out at the first increment.
+    pressure_layout: Option<PressureLayout>,
     /// Per pair and slave: the last `/contact` message written was out of reach.
     out_of_reach: Vec<Vec<bool>>,
 }
@@ -177,6 +179,7 @@ impl<W: Write + Seek> McapSink<W> {
             buf: Vec::with_capacity(4096),
             pending_positions: None,
             pending_pressure: Vec::new(),
+            pressure_layout: None,
             out_of_reach: Vec::new(),
         })
     }
@@ -341,7 +344,10 @@ impl<W: Write + Seek> Observer for McapSink<W> {
             self.put(schemas::CROSSING, &msg)?;
         }
         let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
-        let pressure = profiles(view.model, view.u, rec.t, rec.increment, view.contact);
+        let layout = self
+            .pressure_layout
+            .get_or_insert_with(|| PressureLayout::new(view.model));
+        let pressure = profiles(layout, view.model, view.u, rec.t, rec.increment, view.contact);
         if rec.increment.is_multiple_of(self.opts.positions_every.max(1)) {
             self.pending_positions = None;
             self.pending_pressure.clear();

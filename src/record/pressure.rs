@@ -56,9 +56,55 @@ pub struct PressurePoint {
     pub pressure: f64,
 }
 
-/// The pressure profiles of the node-slave pairs of `model` at the converged state `u`,
-/// load level `t`, from its contact point records.
+/// What the pressure profiles need of the model, worked out once per run: for each pair
+/// with node slaves, its slave nodes and the slave face segments that join two of them
+/// (as slave indices, each segment once, in the order of the bodies' faces).
+#[derive(Debug, Clone, Default)]
+pub struct PressureLayout {
+    pairs: Vec<Option<PairLayout>>,
+}
+
+#[derive(Debug, Clone)]
+struct PairLayout {
+    nodes: Vec<usize>,
+    /// `(i, j)`: slaves `i` and `j` share a face segment.
+    links: Vec<(usize, usize)>,
+}
+
+impl PressureLayout {
+    pub fn new(model: &Model) -> Self {
+        let pairs = (model.contacts.iter())
+            .map(|pair| {
+                let nodes: Vec<usize> = (pair.slaves.iter())
+                    .map(|s| match s {
+                        Slave::Node(n) => Some(*n),
+                        _ => None,
+                    })
+                    .collect::<Option<_>>()?;
+                let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(i, n)| (*n, i)).collect();
+                let mut seen = HashSet::new();
+                let mut links = Vec::new();
+                for body in &model.bodies {
+                    for seg in body.faces.values().flatten() {
+                        if !seen.insert((seg[0].min(seg[1]), seg[0].max(seg[1]))) {
+                            continue;
+                        }
+                        if let (Some(&i), Some(&j)) = (index.get(&seg[0]), index.get(&seg[1])) {
+                            links.push((i, j));
+                        }
+                    }
+                }
+                Some(PairLayout { nodes, links })
+            })
+            .collect();
+        PressureLayout { pairs }
+    }
+}
+
+/// The pressure profiles of the node-slave pairs of `model` (whose [`PressureLayout`] is
+/// `layout`) at the converged state `u`, load level `t`, from its contact point records.
 pub fn profiles(
+    layout: &PressureLayout,
     model: &Model,
     u: &[f64],
     t: f64,
@@ -68,31 +114,17 @@ pub fn profiles(
     let cfg = Config { model, u, t };
     let at = |n: usize| [model.nodes[n][0] + u[2 * n], model.nodes[n][1] + u[2 * n + 1]];
     let mut out = Vec::new();
-    for (ip, pair) in model.contacts.iter().enumerate() {
-        let nodes: Option<Vec<usize>> = (pair.slaves.iter())
-            .map(|s| match s {
-                Slave::Node(n) => Some(*n),
-                _ => None,
-            })
-            .collect();
-        let Some(nodes) = nodes else { continue };
-        let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(i, n)| (*n, i)).collect();
-        // tributary lengths from the slave face segments joining two slave nodes
-        // (each segment once, also when it belongs to several named faces)
+    for ((ip, pair), lay) in model.contacts.iter().enumerate().zip(&layout.pairs) {
+        let Some(PairLayout { nodes, links }) = lay else {
+            continue;
+        };
+        // tributary lengths: half of each slave face segment joining two slave nodes
         let mut tributary = vec![0.0; nodes.len()];
-        let mut seen = HashSet::new();
-        for body in &model.bodies {
-            for seg in body.faces.values().flatten() {
-                if !seen.insert((seg[0].min(seg[1]), seg[0].max(seg[1]))) {
-                    continue;
-                }
-                if let (Some(&i), Some(&j)) = (index.get(&seg[0]), index.get(&seg[1])) {
-                    let (a, b) = (at(seg[0]), at(seg[1]));
-                    let half = 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]);
-                    tributary[i] += half;
-                    tributary[j] += half;
-                }
-            }
+        for &(i, j) in links {
+            let (a, b) = (at(nodes[i]), at(nodes[j]));
+            let half = 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]);
+            tributary[i] += half;
+            tributary[j] += half;
         }
         let mut start = vec![0.0; pair.master.segment_count() + 1];
         for k in 0..pair.master.segment_count() {
