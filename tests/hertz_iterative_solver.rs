@@ -43,17 +43,5 @@ fn iterative_and_direct_solvers_give_the_same_hertz_contact() {
     assert!(stats.levels[1] > 0, "no coarse level: {stats:?}");
     assert!(it.newton_iterations.abs_diff(lu.newton_iterations) <= 1);
     assert_eq!((it.cutbacks, lu.cutbacks), (0, 0));
-    let (a, b) = (lu_mem.contact.last().unwrap(), it_mem.contact.last().unwrap());
-    assert_eq!(a.len(), b.len());
-    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
-    assert!(scale > 0.0);
-    for (p, q) in a.iter().zip(b) {
-        assert!(
-            (p.normal_force - q.normal_force).abs() <= 1e-6 * scale,
-            "normal force at x = {}: {} (LU) vs {} (iterative)",
-            p.position[0],
-            p.normal_force,
-            q.normal_force
-        );
-    }
+    common::assert_same_normal_forces(lu_mem, it_mem, 1e-6, ("LU", "iterative"));
 }

@@ -37,19 +37,7 @@ fn symmetric_and_general_factorisations_give_the_same_contact() {
     assert_eq!(ld.ldlt.fallbacks, 0);
     assert_eq!(ld.newton_iterations, lu.newton_iterations);
     assert_eq!((ld.cutbacks, lu.cutbacks), (0, 0));
-    let (a, b) = (lu_mem.contact.last().unwrap(), ld_mem.contact.last().unwrap());
-    assert_eq!(a.len(), b.len());
-    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
-    assert!(scale > 0.0);
-    for (p, q) in a.iter().zip(b) {
-        assert!(
-            (p.normal_force - q.normal_force).abs() <= 1e-9 * scale,
-            "normal force at x = {}: {} (LU) vs {} (LDLT)",
-            p.position[0],
-            p.normal_force,
-            q.normal_force
-        );
-    }
+    common::assert_same_normal_forces(lu_mem, ld_mem, 1e-9, ("LU", "LDLT"));
 
     // block slide: friction makes the tangent unsymmetric once the block slips
     let problem = common::scene("block-slide", &[]);

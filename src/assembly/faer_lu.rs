@@ -1,19 +1,18 @@
 //! faer's general sparse LU (COLAMD column ordering, partial pivoting) of one pattern: the
-//! symbolic analysis, numeric storage, workspace and right-hand side are kept across
+//! symbolic analysis, numeric storage and workspace are kept across
 //! factorisations, so that refactorising allocates nothing once the pattern is fixed.
 
 use super::sparse::LinearError;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, Par};
+use faer::{Conj, MatMut, Par};
 
 /// The LU of one pattern.
 pub struct LuPlan {
     symbolic: SymbolicLu<usize>,
     numeric: NumericLu<usize, f64>,
     scratch: MemBuffer,
-    rhs: Mat<f64>,
 }
 
 impl LuPlan {
@@ -29,7 +28,6 @@ impl LuPlan {
             symbolic,
             numeric: NumericLu::new(),
             scratch,
-            rhs: Mat::zeros(sym.nrows(), 1),
         })
     }
 
@@ -55,17 +53,12 @@ impl LuPlan {
 
     /// Solve `A x = b` in place with the last factorisation.
     pub fn solve(&mut self, b: &mut [f64], par: Par) {
-        for (i, bi) in b.iter().enumerate() {
-            self.rhs[(i, 0)] = *bi;
-        }
+        let n = b.len();
         LuRef::new_unchecked(&self.symbolic, &self.numeric).solve_in_place_with_conj(
             Conj::No,
-            self.rhs.as_mut(),
+            MatMut::from_column_major_slice_mut(b, n, 1),
             par,
             MemStack::new(&mut self.scratch),
         );
-        for (i, bi) in b.iter_mut().enumerate() {
-            *bi = self.rhs[(i, 0)];
-        }
     }
 }

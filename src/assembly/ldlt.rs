@@ -15,7 +15,7 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Conj, Mat, Par, Side};
+use faer::{Conj, MatMut, Par, Side};
 use std::time::{Duration, Instant};
 
 /// Largest relative difference `|a_ij − a_ji| ≤ tol · max(|a_ij|, |a_ji|)` (plus an absolute
@@ -61,12 +61,9 @@ pub struct LdltPlan {
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     scratch: MemBuffer,
-    rhs: Mat<f64>,
     x: Vec<f64>,
     /// Work space of [`backward_error`].
     work: (Vec<f64>, Vec<f64>),
-    /// Numeric factorisations made.
-    pub factorizations: usize,
 }
 
 impl LdltPlan {
@@ -92,10 +89,8 @@ impl LdltPlan {
             symbolic,
             l_values,
             scratch,
-            rhs: Mat::zeros(n, 1),
             x: vec![0.0; n],
             work: (vec![0.0; n], vec![0.0; n]),
-            factorizations: 0,
         })
     }
 
@@ -129,20 +124,15 @@ impl LdltPlan {
                 Default::default(),
             )
             .map_err(|_| LdltFailure::ZeroPivot)?;
-        self.factorizations += 1;
         let factored = Instant::now();
-        for (i, bi) in b.iter().enumerate() {
-            self.rhs[(i, 0)] = *bi;
-        }
+        self.x.copy_from_slice(b);
+        let n = self.x.len();
         LdltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(
             Conj::No,
-            self.rhs.as_mut(),
+            MatMut::from_column_major_slice_mut(&mut self.x, n, 1),
             par,
             MemStack::new(&mut self.scratch),
         );
-        for (i, xi) in self.x.iter_mut().enumerate() {
-            *xi = self.rhs[(i, 0)];
-        }
         let (r, row_sum) = &mut self.work;
         let eta = backward_error(sym, values, &self.x, b, r, row_sum);
         if eta.is_nan() || eta > BACKWARD_ERROR_LIMIT {

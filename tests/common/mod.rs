@@ -51,3 +51,23 @@ pub fn solve_ok(problem: &Problem) -> (RunSummary, Memory) {
     let (r, m) = solve(problem);
     (r.unwrap_or_else(|e| panic!("{}: {e}", problem.model.name)), m)
 }
+
+/// The normal force of every contact point at the last increment of `b` equals that of `a`
+/// to `tol` times the largest (`what` names the two runs in the message).
+pub fn assert_same_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, &str)) {
+    let (a, b) = (a.contact.last().unwrap(), b.contact.last().unwrap());
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for (p, q) in a.iter().zip(b) {
+        assert!(
+            (p.normal_force - q.normal_force).abs() <= tol * scale,
+            "normal force at x = {}: {} ({}) vs {} ({})",
+            p.position[0],
+            p.normal_force,
+            what.0,
+            q.normal_force,
+            what.1
+        );
+    }
+}
