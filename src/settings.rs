@@ -91,6 +91,22 @@ pub struct NewtonSettings {
     /// A contact point whose state or segment changed this many times within one attempt
     /// is held fixed for the rest of it and verified at convergence (0: never).
     pub freeze_after: u32,
+    /// When to check the assembled tangent by finite differences (see [`TangentCheckWhen`]).
+    pub check_tangent: TangentCheckWhen,
+}
+
+/// When the solver checks its assembled tangent by finite differences at a failing iterate
+/// (`solver/tangent_check.rs`) and writes the result to the run's log.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentCheckWhen {
+    /// Never.
+    Off,
+    /// At the last iterate of the attempt that makes the run fail.
+    #[default]
+    OnFailure,
+    /// At the last iterate of every attempt that fails (also those cut back).
+    EveryFailedAttempt,
 }
 
 impl Default for NewtonSettings {
@@ -104,6 +120,7 @@ impl Default for NewtonSettings {
             line_search_rule: LineSearch::Slope,
             divergence_factor: 1e8,
             freeze_after: 4,
+            check_tangent: TangentCheckWhen::OnFailure,
         }
     }
 }

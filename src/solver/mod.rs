@@ -5,5 +5,6 @@ pub mod monitor;
 pub mod newton;
 pub mod run;
 pub mod state;
+pub mod tangent_check;
 
 pub use run::{run, RunSummary, SolveError};

@@ -11,7 +11,7 @@ use crate::record::{
     ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
     MonitorRecord, Observer, ObserverError, Outcome, RunInfo, StepView,
 };
-use crate::settings::{Predictor, SolverSettings};
+use crate::settings::{Predictor, SolverSettings, TangentCheckWhen};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
@@ -174,6 +174,21 @@ pub fn run(
     Ok(summary)
 }
 
+/// The finite-difference check of the tangent at a failing iterate, as one log line.
+fn diagnose_tangent(
+    model: &Model,
+    asm: &mut Assembler,
+    trial: &TrialState,
+    t: f64,
+    points: &[ChangingPoint],
+) -> String {
+    let nodes = super::tangent_check::nodes_of_points(model, &trial.contact, points);
+    match super::tangent_check::check_tangent(model, asm, trial, t, &nodes) {
+        Ok(c) => format!("at the last iterate: {}", c.summary()),
+        Err(e) => format!("at the last iterate: tangent check not possible ({e})"),
+    }
+}
+
 fn drive(
     model: &Model,
     settings: &SolverSettings,
@@ -268,7 +283,18 @@ fn drive(
                 }
                 Err(f) => {
                     // the step may not fall below nominal / 2^max_cutbacks, however it got there
-                    if cuts >= st.max_cutbacks || dt * 0.5 < nominal * 0.5f64.powi(st.max_cutbacks as i32) {
+                    let last = cuts >= st.max_cutbacks || dt * 0.5 < nominal * 0.5f64.powi(st.max_cutbacks as i32);
+                    let check = match settings.newton.check_tangent {
+                        TangentCheckWhen::Off => false,
+                        TangentCheckWhen::OnFailure => last,
+                        TangentCheckWhen::EveryFailedAttempt => true,
+                    };
+                    if check {
+                        let points = ws.watch.report(&trial.contact, model, 8);
+                        let message = diagnose_tangent(model, &mut asm, &trial, t_new, &points);
+                        log(obs, LogLevel::Warning, increment, t_new, message)?;
+                    }
+                    if last {
                         return Err(SolveError::StepFailed {
                             increment,
                             t: t_new,
