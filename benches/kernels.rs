@@ -122,6 +122,7 @@ fn crossing_point(scheme: TransferKind, mu: f64) -> PointProblem {
             touch_gap: None,
         }),
         forced: None,
+        stick_held: false,
         at_vertex: None,
     }
 }

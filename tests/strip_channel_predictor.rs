@@ -13,7 +13,11 @@
 //!   it; at Δv = 0.005 on 120×4 there were none either way, so the step is not refined here);
 //! * on 120×4, the same equilibrium path as the run without the predictor (`stepping.predictor =
 //!   "last"`, whose first iterate is the converged state): the monitored force at every
-//!   increment within 1e-6 relative (both runs converge to `residual_tol = 1e-9`).
+//!   increment within 1e-6 relative (both runs converge to `residual_tol = 1e-9`), but for
+//!   at most 2 increments in which the corner C crosses to the next face segment in either
+//!   run: there C sits within round-off of a face node, the equilibrium is not unique (which
+//!   segment C converges on depends on where Newton starts), and the two forces only agree
+//!   within 1 % (measured 2026-11-24: one such increment, v = 4.67, 5.1153 against 5.1061).
 
 mod common;
 
@@ -57,15 +61,27 @@ fn predicted_starts_do_not_lose_the_corner_and_the_path_is_the_same() {
 
     let without = window("[120,4]", "last", 560);
     assert_eq!(with.increments.len(), without.increments.len());
+    let crossing = |m: &Memory, inc: usize| m.crossings.iter().any(|(i, _)| *i == inc);
+    let mut at_crossings = Vec::new();
     for (a, b) in with.increments.iter().zip(&without.increments) {
         assert_eq!(a.t, b.t);
         let (fa, fb) = (a.monitor.as_ref().unwrap().force, b.monitor.as_ref().unwrap().force);
+        let tol = if crossing(&with, a.increment) || crossing(&without, a.increment) {
+            1e-2
+        } else {
+            1e-6
+        };
+        if (fa - fb).abs() > 1e-6 * fb.abs().max(1e-3) {
+            at_crossings.push(a.increment);
+        }
         assert!(
-            (fa - fb).abs() <= 1e-6 * fb.abs().max(1e-3),
+            (fa - fb).abs() <= tol * fb.abs().max(1e-3),
             "increment {}: force {fa} with the predictor, {fb} without",
             a.increment
         );
     }
+    println!("increments where the two paths differ beyond 1e-6 (crossings): {at_crossings:?}");
+    assert!(at_crossings.len() <= 2, "{at_crossings:?}");
     let its = |m: &Memory| m.increments.iter().map(|i| i.iterations).sum::<usize>();
     println!(
         "Newton iterations: {} predicted, {} from the last state",

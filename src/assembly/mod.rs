@@ -38,6 +38,12 @@ pub struct Timings {
 
 const NONE: u32 = u32::MAX;
 
+/// Weight of a contact point's `Σ_j |K_ij| |x_j|` in the summed absolute contributions
+/// (`r_abs`), so that [`Assembler::roundoff`]'s `1e-13 ‖r_abs‖` is `≈ 10 ε_mach Σ_j |K_ij| |x_j|`:
+/// the round-off of a penalty force computed from current positions. With `ε_N = 10⁶ E` on
+/// coordinates of order one it is `≈ 10⁻⁹ E`, which the criterion `1e-9 F_ref` cannot go below.
+const CONTACT_ROUNDOFF: f64 = 10.0 * f64::EPSILON / 1e-13;
+
 /// Map from global DOFs (`2 node + component`) to free equations.
 #[derive(Debug, Clone)]
 pub struct DofMap {
@@ -445,9 +451,14 @@ impl Assembler {
             contact.evaluate(&cfg, &mut |nodes, r, k| {
                 let nd = 2 * nodes.len();
                 let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
+                let position = |j: usize| (model.nodes[nodes[j / 2]][j % 2] + u[dof(j)]).abs();
                 for i in 0..nd {
                     r_full[dof(i)] += r[i];
-                    r_abs[dof(i)] += r[i].abs();
+                    // a penalty force is ε times a difference of positions, each known to
+                    // ε_mach |x|: its round-off is ε_mach Σ_j |K_ij| |x_j| (the residual
+                    // criterion's floor, `roundoff`, is 1e-13 times this sum)
+                    let k_x: f64 = (0..nd).map(|j| k[nd * i + j].abs() * position(j)).sum();
+                    r_abs[dof(i)] += r[i].abs() + CONTACT_ROUNDOFF * k_x;
                 }
                 if !with_tangent {
                     return;

@@ -72,6 +72,7 @@ pub fn locate(
     pair: &ContactPair,
     slave: Slave,
     start: Option<usize>,
+    closed_before: bool,
     grid: &mut Option<SegmentGrid>,
 ) -> Pairing {
     let rs = cfg.slave_pos(slave);
@@ -98,7 +99,7 @@ pub fn locate(
     if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
         return Pairing::default(); // out of reach: untracked
     }
-    let valid = wedge || loc.xi.abs() <= 1.0 + XI_TOL;
+    let valid = wedge || loc.xi.abs() <= 1.0 + XI_TOL || held_at_free_end(pair, loc, start, closed_before);
     Pairing {
         segment: Some(loc.segment),
         located: valid.then_some(loc),
@@ -106,6 +107,26 @@ pub fn locate(
         pinned: wedge && loc.xi.abs() > 1.0 + XI_TOL,
     }
 }
+
+/// Rule 2b: a point that was closed on the last segment of a master (at the last converged
+/// increment or the previous iterate) and now projects just past its free end — by at most
+/// [`FREE_END_HOLD`], still penetrating — stays paired with it. The end node of a body
+/// resting on another with matching edges (the contact patch test, a sheet whose end lies on
+/// a facet's end) sits at `ξ = ±1` to within the penetration; released at `ξ = 1 + 10⁻⁶`
+/// and paired again at `1 − 10⁻⁶`, its force switched on and off between Newton iterates
+/// (the residual jumped by 10³ on the patch test). A point must move clearly past the end, or
+/// open, to leave.
+fn held_at_free_end(pair: &ContactPair, loc: Located, start: Option<usize>, closed_before: bool) -> bool {
+    let (prev, next) = pair.master.neighbours(loc.segment);
+    let free_end = if loc.xi > 0.0 { next.is_none() } else { prev.is_none() };
+    closed_before && start == Some(loc.segment) && free_end && loc.gap < 0.0 && loc.xi.abs() <= 1.0 + FREE_END_HOLD
+}
+
+/// How far past a free end (in `ξ`: 0.05 % of the segment's length) a closed point stays
+/// paired with it ([`held_at_free_end`]): well above the strain-level mismatch of two bodies'
+/// edges pressed together, well below anything a node sliding off an end travels in an
+/// increment.
+pub const FREE_END_HOLD: f64 = 1e-3;
 
 /// The pairing of a point held on `segment` by the solver (projection on the segment's
 /// line even past its ends; `None`: unpaired).
@@ -209,42 +230,70 @@ fn turn(a: &SegmentGeom<f64>, b: &SegmentGeom<f64>) -> f64 {
 }
 
 /// Rule 4: drop the pairing of nodes next to a vertex owned by another pair's slave.
-/// `pairings[ip][is]` are the pairings of every pair at the current iterate.
-pub fn exclude_owned_vertices(cfg: &Config, pairings: &mut [Vec<Pairing>]) {
+/// `pairings[ip][is]` are the pairings of every pair at the current iterate;
+/// `committed(ip, is)`: the point's segment and whether it was closed at the last converged
+/// increment.
+///
+/// - While the vertex presses on a face segment (`ζ < 0`), the segment's two nodes are not
+///   paired with the outline's pieces on either side of the vertex: the vertex contact
+///   supports them (an open vertex on the face supports nothing).
+/// - When the vertex, closed on the face at the last converged increment, has just passed the
+///   face's free end, the face's end node is going round the corner: if it was on the piece
+///   before the vertex at the last converged increment and now lies past the vertex along
+///   that piece, it is paired with the piece after the vertex (which pushes it off the
+///   outline), not with the one before it (which would push it up through the outline by
+///   the depth of the other piece). An end node coming the other way (a block dragged from
+///   beyond the piece after the vertex onto the one before) is left to the nearest-face rule.
+pub fn exclude_owned_vertices(
+    cfg: &Config,
+    pairings: &mut [Vec<Pairing>],
+    committed: &dyn Fn(usize, usize) -> (Option<usize>, bool),
+) {
     for (ip, pair) in cfg.model.contacts.iter().enumerate() {
         for owned in &pair.owned_vertices {
             let owner = &cfg.model.contacts[owned.owner];
-            // while the corner presses on the face (ζ < 0), or has just passed the face's
-            // free end (tracked there with |ξ| > 1: the face's end node is at the corner and
-            // goes round it); an open corner on the face supports nothing
-            let owner_pairing = pairings[owned.owner][0];
+            let owner_pairing = pairings[owned.owner][owned.slave];
             let Some(seg) = owner_pairing.segment else { continue };
-            // pressing: the pieces on both sides of the vertex; past the end: the piece before
-            // it only (the end node going round the corner meets the piece after it)
-            let (before, after) = match owner_pairing.located {
-                Some(l) if l.gap < 0.0 => (true, true),
-                Some(_) => continue,
-                None => (true, false),
-            };
-            let Master::Face { segments, .. } = &owner.master else {
+            let Master::Face {
+                segments, prev, next, ..
+            } = &owner.master
+            else {
                 continue;
             };
-            let supported = segments[seg];
-            for (is, slave) in pair.slaves.iter().enumerate() {
-                let p = &mut pairings[ip][is];
-                let near = p
-                    .located
-                    .is_some_and(|l| (before && l.segment + 1 == owned.vertex) || (after && l.segment == owned.vertex));
-                if near && matches!(slave, Slave::Node(n) if supported.contains(n)) {
-                    if after {
-                        p.located = None;
-                        p.excluded = true;
-                    } else {
-                        // the face's end node going round the corner: handed to the piece
-                        // after the vertex (the wall), which pushes it off the block
-                        *p = held(cfg, pair, *slave, Some(owned.vertex));
+            match owner_pairing.located {
+                Some(l) if l.gap < 0.0 => {
+                    for (is, slave) in pair.slaves.iter().enumerate() {
+                        let p = &mut pairings[ip][is];
+                        let near = p
+                            .located
+                            .is_some_and(|l| l.segment + 1 == owned.vertex || l.segment == owned.vertex);
+                        if near && matches!(slave, Slave::Node(n) if segments[seg].contains(n)) {
+                            p.located = None;
+                            p.excluded = true;
+                        }
                     }
                 }
+                None if committed(owned.owner, owned.slave).1 => {
+                    // the face's end node on the side the vertex has passed
+                    let owner_at = cfg
+                        .segment(owner, seg)
+                        .project(cfg.slave_pos(owner.slaves[owned.slave]));
+                    let end = match (owner_at.xi > 1.0, prev[seg], next[seg]) {
+                        (true, _, None) => segments[seg][1],
+                        (false, None, _) => segments[seg][0],
+                        _ => continue,
+                    };
+                    for (is, slave) in pair.slaves.iter().enumerate() {
+                        let was_before = committed(ip, is).0.is_some_and(|s| s + 1 == owned.vertex);
+                        // past the vertex along the piece before it: rounding the corner
+                        let rounding = || cfg.segment(pair, owned.vertex - 1).project(cfg.slave_pos(*slave)).xi > 1.0;
+                        if *slave == Slave::Node(end) && was_before && pairings[ip][is].located.is_some() && rounding()
+                        {
+                            pairings[ip][is] = held(cfg, pair, *slave, Some(owned.vertex));
+                        }
+                    }
+                }
+                _ => {}
             }
         }
     }

@@ -53,7 +53,7 @@ fn locate_all(m: &Model, start: Option<usize>) -> Vec<Pairing> {
     let mut grid = None;
     pair.slaves
         .iter()
-        .map(|&s| locate(&cfg, pair, s, start, &mut grid))
+        .map(|&s| locate(&cfg, pair, s, start, false, &mut grid))
         .collect()
 }
 

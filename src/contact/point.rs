@@ -88,6 +88,11 @@ pub struct PointProblem {
     /// of the gap. Stick or slip is still the return mapping's, on the data (see
     /// [`return_map`]): only open/closed is held. `None`: decided by the data.
     pub forced: Option<ContactState>,
+    /// Stick held by the solver for the first correction of an attempt (an elastic
+    /// predictor, see `solver/active_set.rs`): a closed point returns its trial traction
+    /// `T_1 = T_1^tr` and the stick tangent, whatever the cone says. `false`: the return
+    /// mapping decides.
+    pub stick_held: bool,
     /// `Some(±1)`: the point is in the wedge of a concave vertex of the master at that end of
     /// `B` and is pinned to the vertex (point-to-node form, [`super::vertex`]).
     pub at_vertex: Option<f64>,
@@ -125,7 +130,7 @@ impl PointProblem {
         let zero = S::from(0.0);
         let open = match self.forced {
             Some(state) => state == ContactState::Open,
-            None => proj.gap.re() >= 0.0,
+            None => !touching(proj.gap.re(), proj.a11.re()),
         };
         if open {
             return PointEval {
@@ -181,7 +186,11 @@ impl PointProblem {
             let penetration = -proj.gap;
             t1_trial *= penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
         }
-        let (t1, state) = return_map(&self.law, t1_trial, normal_force, proj.a11);
+        let (t1, state) = if self.stick_held && self.law.mu > 0.0 {
+            (t1_trial, ContactState::Stick)
+        } else {
+            return_map(&self.law, t1_trial, normal_force, proj.a11)
+        };
         PointEval {
             proj,
             normal_force,
@@ -262,6 +271,19 @@ impl PointProblem {
             state: e.state,
         }
     }
+}
+
+/// Relative size of the gap, against the segment's length `2√a11`, below which a point counts
+/// as touching: the round-off of a projection (coordinates of order one carry about 1e-16).
+pub const TOUCH_TOLERANCE: f64 = 1e-12;
+
+/// Whether a point with gap `ζ` on a segment of metric `a11` is closed: penetrating, or
+/// touching to round-off. A point lying exactly on the master (a zero-gap start: two bodies
+/// meshed against each other, a sheet resting on a rigid facet) is closed with zero normal
+/// force and the penalty's stiffness, so that the first correction of Newton sees the contact
+/// instead of moving the body through the master and back.
+pub fn touching(gap: f64, a11: f64) -> bool {
+    gap <= TOUCH_TOLERANCE * 2.0 * a11.sqrt()
 }
 
 fn dot_self<S: Scalar>(a: V2<S>) -> S {

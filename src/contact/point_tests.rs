@@ -35,6 +35,7 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
             touch_gap: None,
         }),
         forced: None,
+        stick_held: false,
         at_vertex: None,
     }
 }
@@ -198,6 +199,7 @@ fn rigid_arc_master_tangent_matches_fd() {
             touch_gap: None,
         }),
         forced: None,
+        stick_held: false,
         at_vertex: None,
     };
     fd_check(&p, ContactState::Stick);
@@ -250,6 +252,7 @@ fn slave_force_is_normal_push_plus_traction() {
             touch_gap: None,
         }),
         forced: None,
+        stick_held: false,
         at_vertex: None,
     };
     let mut r = [0.0; 2];

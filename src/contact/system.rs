@@ -28,6 +28,8 @@ pub struct PointHistory {
     /// otherwise): its first touch is interpolated from it.
     pub gap: f64,
     pub crossings: u32,
+    /// Closed and sticking at the last converged increment.
+    pub stuck: bool,
 }
 
 impl Default for PointHistory {
@@ -40,6 +42,7 @@ impl Default for PointHistory {
             a11: f64::NAN,
             gap: f64::NAN,
             crossings: 0,
+            stuck: false,
         }
     }
 }
@@ -78,6 +81,9 @@ pub struct ContactSystem {
     /// points): the segment and the open/closed decision are kept (the kernel's `forced`
     /// state); stick or slip is still decided by the return mapping.
     frozen: Vec<Vec<Option<Decision>>>,
+    /// Points whose stick is held for the first correction of an attempt (see
+    /// [`super::point::PointProblem::stick_held`]); released with the frozen ones.
+    stick_held: Vec<Vec<bool>>,
     /// Verification of frozen points: their states are free again, their segments are kept
     /// where the projection is still (to 1 %) on the segment.
     verifying: bool,
@@ -217,6 +223,7 @@ pub(super) fn local_problem(
         seg_b,
         closed,
         forced: None,
+        stick_held: false,
         at_vertex: None,
     };
     (problem, slots)
@@ -272,12 +279,14 @@ impl ContactSystem {
             .map(|p| vec![Pairing::default(); p.slaves.len()])
             .collect();
         let frozen = model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect();
+        let stick_held = model.contacts.iter().map(|p| vec![false; p.slaves.len()]).collect();
         ContactSystem {
             committed,
             current,
             pairings,
             grids: vec![None; model.contacts.len()],
             frozen,
+            stick_held,
             verifying: false,
         }
     }
@@ -295,6 +304,7 @@ impl ContactSystem {
     /// Release every frozen point.
     pub fn unfreeze(&mut self) {
         self.frozen.iter_mut().flatten().for_each(|f| *f = None);
+        self.stick_held.iter_mut().flatten().for_each(|f| *f = false);
         self.verifying = false;
     }
 
@@ -315,9 +325,10 @@ impl ContactSystem {
         })
     }
 
-    /// Number of frozen points.
+    /// Number of frozen points (and points whose stick is held).
     pub fn frozen_count(&self) -> usize {
-        self.frozen.iter().flatten().filter(|f| f.is_some()).count()
+        let held = self.frozen.iter().flatten().zip(self.stick_held.iter().flatten());
+        held.filter(|(f, s)| f.is_some() || **s).count()
     }
 
     /// `(pair, slave)` of the `flat`-th point in [`Self::signature`] order.
@@ -338,10 +349,22 @@ impl ContactSystem {
         self.frozen[ip][is] = Some(frozen);
     }
 
-    /// Release the `flat`-th point (see [`Self::freeze`]).
+    /// Number of points whose stick is held.
+    pub fn stick_held_count(&self) -> usize {
+        self.stick_held.iter().flatten().filter(|s| **s).count()
+    }
+
+    /// Hold the `flat`-th point in stick (see [`super::point::PointProblem::stick_held`]).
+    pub fn hold_stick(&mut self, flat: usize) {
+        let (ip, is) = self.point_index(flat);
+        self.stick_held[ip][is] = true;
+    }
+
+    /// Release the `flat`-th point (see [`Self::freeze`], [`Self::hold_stick`]).
     pub fn release(&mut self, flat: usize) {
         let (ip, is) = self.point_index(flat);
         self.frozen[ip][is] = None;
+        self.stick_held[ip][is] = false;
     }
 
     /// `(state, segment)` of every point at the current iterate, written into `out`
@@ -375,11 +398,21 @@ impl ContactSystem {
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             let grid = &mut self.grids[ip];
             for (is, &slave) in pair.slaves.iter().enumerate() {
-                let start = self.current[ip][is].segment.or(self.committed[ip][is].segment);
-                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, grid);
+                let now = &self.current[ip][is];
+                let start = now.segment.or(self.committed[ip][is].segment);
+                // closed at the previous iterate of this attempt, or (at its first iterate) at
+                // the last converged increment
+                let closed_before = match (now.segment, now.eval) {
+                    (None, None) => self.committed[ip][is].closed,
+                    (_, e) => e.is_some_and(|e| e.state != ContactState::Open),
+                };
+                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, closed_before, grid);
             }
         }
-        pairing::exclude_owned_vertices(cfg, &mut self.pairings);
+        let committed = &self.committed;
+        pairing::exclude_owned_vertices(cfg, &mut self.pairings, &|ip, is| {
+            (committed[ip][is].segment, committed[ip][is].closed)
+        });
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 if let Some(f) = self.frozen[ip][is] {
@@ -423,6 +456,7 @@ impl ContactSystem {
                 let (mut problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
                 if !self.verifying {
                     problem.forced = self.frozen[ip][is].map(|f| f.state);
+                    problem.stick_held = self.stick_held[ip][is];
                 }
                 problem.at_vertex = paired.pinned.then_some(loc.xi.signum());
                 let nd = 2 * slots.len;
@@ -453,6 +487,7 @@ impl ContactSystem {
                             }
                         }
                         h.closed = true;
+                        h.stuck = e.state == ContactState::Stick && pair.law.mu > 0.0;
                         h.gap = f64::NAN;
                         h.xi = e.proj.xi;
                         h.t1 = e.t1;
@@ -461,6 +496,7 @@ impl ContactSystem {
                     Some(e) => {
                         // paired but open: where it is, for the first touch
                         h.closed = false;
+                        h.stuck = false;
                         h.t1 = 0.0;
                         h.xi = e.proj.xi;
                         h.a11 = e.proj.a11;
@@ -468,6 +504,7 @@ impl ContactSystem {
                     }
                     None => {
                         h.closed = false;
+                        h.stuck = false;
                         h.t1 = 0.0;
                         h.gap = f64::NAN;
                     }

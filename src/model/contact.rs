@@ -21,8 +21,10 @@ pub enum Slave {
 pub struct OwnedVertex {
     /// Point index of the vertex in the outline (between pieces `vertex − 1` and `vertex`).
     pub vertex: usize,
-    /// Index of the owning pair in [`Model::contacts`] (its only slave is the vertex).
+    /// Index of the owning pair in [`Model::contacts`] …
     pub owner: usize,
+    /// … and of the vertex among that pair's slaves.
+    pub slave: usize,
 }
 
 /// A contact master surface.

@@ -83,6 +83,64 @@ impl RectMesh {
     }
 }
 
+/// Counter-clockwise quadrilateral mesh of a ring sector `r_in ≤ r ≤ r_out`,
+/// `θ_from ≤ θ ≤ θ_to` about `centre` (a curved strip: a belt lying on a cylinder), with
+/// `elements = [around, through]`. Node sets `inner`, `outer`, `start` (θ_from), `end`
+/// (θ_to), `all`; faces of the same names, each running with the body on its left (`outer`
+/// counter-clockwise, `inner` clockwise, `start` outwards, `end` inwards).
+pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements: [usize; 2]) -> RectMesh {
+    let [na, nr] = elements;
+    let id = |i: usize, j: usize| j * (na + 1) + i;
+    let (t0, t1) = (angles_deg[0].to_radians(), angles_deg[1].to_radians());
+    let mut nodes = Vec::with_capacity((na + 1) * (nr + 1));
+    for j in 0..=nr {
+        let r = radii[0] + (radii[1] - radii[0]) * j as f64 / nr as f64;
+        for i in 0..=na {
+            let t = t0 + (t1 - t0) * i as f64 / na as f64;
+            nodes.push([centre[0] + r * t.cos(), centre[1] + r * t.sin()]);
+        }
+    }
+    // (θ, r) ↦ (x, y) turns the (i, j) grid's orientation when θ increases: order each quad
+    // so that it is counter-clockwise whichever way θ runs
+    let ccw = (t1 > t0) == (radii[1] > radii[0]);
+    let mut quads = Vec::with_capacity(na * nr);
+    for j in 0..nr {
+        for i in 0..na {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            quads.push(if ccw { [q[0], q[3], q[2], q[1]] } else { q });
+        }
+    }
+    let mut node_sets = BTreeMap::new();
+    node_sets.insert("inner".into(), (0..=na).map(|i| id(i, 0)).collect());
+    node_sets.insert("outer".into(), (0..=na).map(|i| id(i, nr)).collect());
+    node_sets.insert("start".into(), (0..=nr).map(|j| id(0, j)).collect());
+    node_sets.insert("end".into(), (0..=nr).map(|j| id(na, j)).collect::<Vec<_>>());
+    node_sets.insert("all".into(), (0..nodes.len()).collect());
+    let mut faces: BTreeMap<String, Vec<[usize; 2]>> = BTreeMap::new();
+    let run = |v: Vec<[usize; 2]>, forward: bool| -> Vec<[usize; 2]> {
+        if forward {
+            v
+        } else {
+            v.into_iter().rev().map(|[a, b]| [b, a]).collect()
+        }
+    };
+    let inner: Vec<[usize; 2]> = (0..na).map(|i| [id(i, 0), id(i + 1, 0)]).collect();
+    let outer: Vec<[usize; 2]> = (0..na).map(|i| [id(i, nr), id(i + 1, nr)]).collect();
+    let start: Vec<[usize; 2]> = (0..nr).map(|j| [id(0, j), id(0, j + 1)]).collect();
+    let end: Vec<[usize; 2]> = (0..nr).map(|j| [id(na, j), id(na, j + 1)]).collect();
+    // counter-clockwise quads: outer runs with i when ccw, start runs with j when ccw
+    faces.insert("outer".into(), run(outer, ccw));
+    faces.insert("inner".into(), run(inner, !ccw));
+    faces.insert("start".into(), run(start, ccw));
+    faces.insert("end".into(), run(end, !ccw));
+    RectMesh {
+        nodes,
+        quads,
+        node_sets,
+        faces,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -110,5 +168,32 @@ mod tests {
         let last = c[5] - c[4];
         assert!((last / first - 4.0).abs() < 1e-12);
         assert!((c[5] - 10.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn annulus_quads_are_counter_clockwise_and_faces_keep_the_body_on_their_left() {
+        for angles in [[0.0, 180.0], [180.0, 0.0]] {
+            let m = annulus([0.0, 0.0], [1.0, 1.1], angles, [12, 2]);
+            let area = |q: &[usize; 4]| {
+                let p = q.map(|n| m.nodes[n]);
+                (0..4)
+                    .map(|i| p[i][0] * p[(i + 1) % 4][1] - p[(i + 1) % 4][0] * p[i][1])
+                    .sum::<f64>()
+            };
+            assert!(m.quads.iter().all(|q| area(q) > 0.0), "{angles:?}");
+            // the body lies to the left of every face segment: the centre of the element that
+            // has the segment as an edge is on its left
+            for (name, face) in &m.faces {
+                for &[a, b] in face {
+                    let q = m.quads.iter().find(|q| q.contains(&a) && q.contains(&b)).unwrap();
+                    let c = q.iter().fold([0.0, 0.0], |s, &n| {
+                        [s[0] + m.nodes[n][0] / 4.0, s[1] + m.nodes[n][1] / 4.0]
+                    });
+                    let (pa, pb) = (m.nodes[a], m.nodes[b]);
+                    let cross = (pb[0] - pa[0]) * (c[1] - pa[1]) - (pb[1] - pa[1]) * (c[0] - pa[0]);
+                    assert!(cross > 0.0, "{name} {angles:?}");
+                }
+            }
+        }
     }
 }

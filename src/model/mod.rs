@@ -97,6 +97,23 @@ impl Model {
         2 * self.nodes.len()
     }
 
+    /// The boundary edges of body `body` (edges of exactly one of its elements), oriented
+    /// as in their element, i.e. with the body on their left like the faces.
+    pub fn boundary_segments(&self, body: usize) -> Vec<[usize; 2]> {
+        let mut count = std::collections::HashMap::<[usize; 2], usize>::new();
+        fn edges(e: &Element) -> impl Iterator<Item = [usize; 2]> + '_ {
+            (0..4).map(move |i| [e.nodes[i], e.nodes[(i + 1) % 4]])
+        }
+        let of_body = || self.elements.iter().filter(|e| e.body == body);
+        for [a, b] in of_body().flat_map(edges) {
+            *count.entry([a.min(b), a.max(b)]).or_default() += 1;
+        }
+        of_body()
+            .flat_map(edges)
+            .filter(|[a, b]| count[&[(*a).min(*b), (*a).max(*b)]] == 1)
+            .collect()
+    }
+
     /// `node N`, `rigid NAME` or `rigid NAME vertex K`.
     pub fn slave_label(&self, s: Slave) -> String {
         match s {

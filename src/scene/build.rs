@@ -1,14 +1,15 @@
 //! Resolve a checked scene into a [`Model`]: mesh generation, node selections, constraints,
 //! rigid geometry and contact pairs, with errors that point at the offending name.
 
+use super::build_pairs;
 use super::mesh::{body_mesh, MeshFile};
 use super::types::*;
 use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
-    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, MonitorTarget, NodalLoad, OwnedVertex, Piece,
-    Prescribed, Ramp, RigidBody, RigidShape, Slave,
+    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, MonitorTarget, NodalLoad, Piece, Prescribed,
+    Ramp, RigidBody, RigidShape, Slave,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -340,11 +341,33 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         });
     }
     let h = max_edge(&m);
+    let mut implied = Vec::new();
     for c in &s.contacts {
-        let pair = contact_pair(&cx, &m, c, h)?;
+        let mut pair = contact_pair(&cx, &m, c, h)?;
+        implied.extend(implied_pairs(&cx, &m, c, &mut pair)?);
         m.contacts.push(pair);
     }
-    own_vertices(&mut m);
+    // the vertices a scene names as slaves keep their pairs; the others get one per outline
+    let taken: Vec<(usize, usize)> = m
+        .contacts
+        .iter()
+        .flat_map(|p| p.slaves.iter())
+        .filter_map(|s| match s {
+            Slave::RigidVertex(b, v) => Some((*b, *v)),
+            _ => None,
+        })
+        .collect();
+    for (pair, slave_body) in implied {
+        match pair {
+            Implied::SecondPass(p) => m.contacts.push(p),
+            Implied::Vertices(ip) => {
+                if let Some(p) = build_pairs::vertex_pair(&m, &m.contacts[ip], slave_body, &taken) {
+                    m.contacts.push(p);
+                }
+            }
+        }
+    }
+    build_pairs::own_vertices(&mut m);
     for mon in s.monitors.iter() {
         let target = match (&mon.rigid, &mon.body, &mon.nodes) {
             (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(&cx, &m, r)?),
@@ -478,24 +501,50 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
     })
 }
 
-/// Mark the vertices of rigid master outlines that another pair's slave owns.
-fn own_vertices(m: &mut Model) {
-    let owners: Vec<(usize, usize, usize)> = m
-        .contacts
-        .iter()
-        .enumerate()
-        .filter_map(|(ip, p)| match p.slaves.as_slice() {
-            [Slave::RigidVertex(body, vertex)] => Some((ip, *body, *vertex)),
-            _ => None,
-        })
-        .collect();
-    for pair in &mut m.contacts {
-        if let Master::Rigid { body, .. } = pair.master {
-            for &(owner, b, vertex) in &owners {
-                if b == body {
-                    pair.owned_vertices.push(OwnedVertex { vertex, owner });
-                }
-            }
+/// A pair a scene's `[[contact]]` implies besides itself.
+enum Implied {
+    /// The second pass of a two-pass pair.
+    SecondPass(ContactPair),
+    /// The convex vertices of the rigid master of the pair with this index.
+    Vertices(usize),
+}
+
+/// The pairs `c` implies (`pair` is its first pass; with its slave body): the second pass of
+/// a two-pass pair (which halves `pair`'s penalties), or the vertices of its rigid master.
+fn implied_pairs(
+    cx: &Ctx,
+    m: &Model,
+    c: &ContactSpec,
+    pair: &mut ContactPair,
+) -> Result<Vec<(Implied, usize)>, SceneError> {
+    let slave_body = c.slave.body.as_deref().map(|b| body_index(cx, m, b)).transpose()?;
+    let mut out = Vec::new();
+    match (&pair.master, slave_body) {
+        (Master::Face { .. }, Some(sb)) if c.two_pass => {
+            let second = build_pairs::second_pass(m, pair, sb).ok_or_else(|| {
+                cx.err(
+                    &c.name,
+                    format!(
+                        "contact `{}`: two_pass needs slave nodes that span a face of their body",
+                        c.name
+                    ),
+                    "give `slave.nodes` a set of boundary nodes (e.g. \"bottom\"), or set two_pass = false",
+                )
+            })?;
+            out.push((Implied::SecondPass(second), sb));
         }
+        _ if c.two_pass => {
+            return Err(cx.err(
+                &c.name,
+                format!(
+                    "contact `{}`: two_pass is for slave nodes on the face of another deformable body",
+                    c.name
+                ),
+                "use `slave = { body, nodes }` with `master = { body, face }`, or remove two_pass",
+            ))
+        }
+        (Master::Rigid { .. }, Some(sb)) if c.vertices => out.push((Implied::Vertices(m.contacts.len()), sb)),
+        _ => {}
     }
+    Ok(out)
 }

@@ -124,6 +124,33 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
                 file: None,
             }
         }
+        MeshSpec::Annulus {
+            centre,
+            radius,
+            angle_deg,
+            elements,
+        } => {
+            let ok = elements[0] > 0
+                && elements[1] > 0
+                && radius[0] > 0.0
+                && radius[1] > radius[0]
+                && angle_deg[0] != angle_deg[1]
+                && (angle_deg[1] - angle_deg[0]).abs() <= 360.0;
+            if !ok {
+                return Err(invalid(
+                    format!("body `{}`: an annulus needs 0 < radius[0] < radius[1], two different angles less than a turn apart and ≥ 1 element each way", b.name),
+                    "fix [body.mesh]",
+                ));
+            }
+            let m = crate::model::mesh::annulus(*centre, *radius, *angle_deg, *elements);
+            BodyMesh {
+                nodes: m.nodes,
+                quads: m.quads,
+                node_sets: m.node_sets,
+                faces: m.faces,
+                file: None,
+            }
+        }
         MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
     };
     if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {

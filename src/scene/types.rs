@@ -92,6 +92,18 @@ pub enum MeshSpec {
         #[serde(default = "unit_grading")]
         grading: [f64; 2],
     },
+    /// Structured mesh of the ring sector `radius[0] ≤ r ≤ radius[1]`,
+    /// `angle_deg[0] ≤ θ ≤ angle_deg[1]` about `centre` (a belt lying on a cylinder); node
+    /// sets and faces `inner`, `outer`, `start`, `end` (and `all`).
+    Annulus {
+        centre: [f64; 2],
+        /// Inner and outer radius.
+        radius: [f64; 2],
+        /// Start and end angle, degrees (counter-clockwise from +x).
+        angle_deg: [f64; 2],
+        /// Elements around and through.
+        elements: [usize; 2],
+    },
     /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
     /// are the body's node sets, its physical curves on the boundary its faces.
     Gmsh {
@@ -325,6 +337,26 @@ pub struct ContactSpec {
     /// it (default: twice the largest element edge of the model). Free ends and convex
     /// vertices are handled by rule, not by this radius.
     pub search_radius: Option<f64>,
+    /// Node-to-segment in both directions (for a pair of two deformable bodies: slave nodes
+    /// on the master face, and the master face's nodes on the slave nodes' face), each pass
+    /// with half the penalties: a uniform pressure is transmitted between non-matching meshes
+    /// (the contact patch test), which one pass does not.
+    #[serde(default)]
+    pub two_pass: bool,
+    /// For a rigid master: its convex vertices are also rigid slave points against the face
+    /// of the slave nodes (a pair `NAME/vertices` is added), so that a polygon's corner does
+    /// not poke through the face between two nodes. `false` turns it off.
+    #[serde(default = "yes")]
+    pub vertices: bool,
+    /// Allow slave points that start penetrating a rigid master (an initial interference on
+    /// purpose). By default a scene whose rigid outline starts overlapping its slaves is
+    /// refused: that is almost always an outline listed the wrong way round.
+    #[serde(default)]
+    pub allow_initial_penetration: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 fn default_transfer() -> TransferKind {

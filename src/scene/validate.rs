@@ -354,6 +354,12 @@ fn body(c: &Check, i: usize, b: &BodySpec, ext: &mut Extent) -> Result<f64, Scen
         } => (origin, size, elements, grading),
         // checked when the file is read (`model::gmsh`): its size is not known here
         MeshSpec::Gmsh { .. } => return Ok(f64::INFINITY),
+        MeshSpec::Annulus {
+            centre,
+            radius,
+            angle_deg,
+            elements,
+        } => return annulus(c, &mesh, &key, (centre, radius, angle_deg, elements), ext),
     };
     c.point(&sub(&mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
     let mut h = f64::INFINITY;
@@ -396,6 +402,47 @@ fn body(c: &Check, i: usize, b: &BodySpec, ext: &mut Extent) -> Result<f64, Scen
     Ok(h)
 }
 
+/// The checks of an annulus mesh; returns its smallest element edge.
+fn annulus(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (centre, radius, angle_deg, elements): (&[f64; 2], &[f64; 2], &[f64; 2], &[usize; 2]),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    c.point(&sub(mesh, "centre"), &format!("{key}.mesh.centre"), *centre, ext)?;
+    for k in 0..2 {
+        c.positive(&sub(mesh, "radius"), &format!("{key}.mesh.radius[{k}]"), radius[k])?;
+        c.finite(
+            &sub(mesh, "angle_deg"),
+            &format!("{key}.mesh.angle_deg[{k}]"),
+            angle_deg[k],
+        )?;
+        if elements[k] == 0 {
+            return Err(c.fail(
+                &sub(mesh, "elements"),
+                &format!("{key}.mesh.elements[{k}]"),
+                0,
+                "must be ≥ 1",
+                "give at least one element each way",
+            ));
+        }
+    }
+    let sweep = (angle_deg[1] - angle_deg[0]).abs();
+    if radius[1] <= radius[0] || sweep == 0.0 || sweep > 360.0 {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("radius {radius:?}, angle_deg {angle_deg:?}"),
+            "needs radius[0] < radius[1] and two different angles at most a turn apart",
+            "e.g. radius = [1.0, 1.005], angle_deg = [0.0, 180.0]",
+        ));
+    }
+    ext.add(centre[0].abs().max(centre[1].abs()) + radius[1]);
+    let around = radius[0] * sweep.to_radians() / elements[0] as f64;
+    Ok(around.min((radius[1] - radius[0]) / elements[1] as f64))
+}
+
 fn limits(c: &Check, s: &SceneFile) -> R {
     let lim = &s.limits;
     // counted in f64: element counts may be anything up to u64::MAX
@@ -403,13 +450,17 @@ fn limits(c: &Check, s: &SceneFile) -> R {
         .bodies
         .iter()
         .map(|b| match &b.mesh {
-            MeshSpec::Rectangle { elements, .. } => 2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0),
+            MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+                2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
+            }
             MeshSpec::Gmsh { .. } => 0.0,
         })
         .sum();
     let worst = s.bodies.iter().enumerate().max_by(|a, b| {
         let n = |b: &BodySpec| match &b.mesh {
-            MeshSpec::Rectangle { elements, .. } => elements[0] as f64 * elements[1] as f64,
+            MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+                elements[0] as f64 * elements[1] as f64
+            }
             MeshSpec::Gmsh { .. } => 0.0,
         };
         n(a.1).total_cmp(&n(b.1))
@@ -421,7 +472,9 @@ fn limits(c: &Check, s: &SceneFile) -> R {
         format!("{}.mesh.elements", named("body", &b.name))
     });
     let value = worst.map_or(String::new(), |(_, b)| match &b.mesh {
-        MeshSpec::Rectangle { elements, .. } => format!("[{}, {}]", elements[0], elements[1]),
+        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+            format!("[{}, {}]", elements[0], elements[1])
+        }
         MeshSpec::Gmsh { file } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {

@@ -18,6 +18,7 @@
 
 use crate::contact::law::ContactState;
 use crate::contact::system::{ContactSystem, Decision};
+use crate::model::Model;
 use crate::record::{ChangingPoint, PointDecision};
 
 /// How many past iterates of each point are kept for the failure report.
@@ -156,36 +157,73 @@ impl ActiveSetWatch {
     }
 }
 
-/// Points that were closed at the last converged increment, are found open at the first
-/// iterate of a *predicted* start and are still paired with a segment: hold them closed on
-/// that segment (the kernel's penalty stays on, pulling where the gap opened) for the first
-/// correction only; their indices go into `held`, the count is returned.
+/// What the first correction of an attempt holds (its indices go into `held`; the count
+/// is returned). From the second iterate on every point decides for itself again, so the
+/// converged state is the same; only the first correction's tangent changes.
 ///
-/// Why: the secant predictor moves every node along its last increment, so where the strip
-/// wraps the sharp corner C the extrapolated face is the chord past C, and C comes out
-/// open by a little more than its penetration. The tangent without C's penalty leaves the
-/// strip free to swing about its last support: on the 120×4 strip-channel the first
-/// correction was ≈ 8 units long, the slope line search cut it to `s = 0.001` (8
-/// assemblies) and the next residual was 1e3 — in 302 of 1 200 increments. The predicted
-/// lift-off is an artefact of the extrapolation: with the last converged active set the
-/// first correction is a good one, and the decisions are free again from the second
-/// iterate on (a real lift-off then opens there).
-pub fn hold_predicted_lift_offs(contact: &mut ContactSystem, held: &mut Vec<usize>) -> usize {
+/// 1. **Predicted lift-offs** (only at a `predicted` start): points closed at the last
+///    converged increment, found open at the first iterate and still paired with a segment,
+///    are held closed on that segment (the kernel's penalty stays on, pulling where the gap
+///    opened). The secant predictor moves every node along its last increment, so where the
+///    strip wraps the sharp corner C the extrapolated face is the chord past C, and C comes
+///    out open by a little more than its penetration. The tangent without C's penalty leaves
+///    the strip free to swing about its last support: on the 120×4 strip-channel the first
+///    correction was ≈ 8 units long, the slope line search cut it to `s = 0.001` (8
+///    assemblies) and the next residual was 1e3 — in 302 of 1 200 increments.
+/// 2. **Stick as the elastic predictor** of friction: frictional points closed at the last
+///    converged increment and closed (or held closed) now are held in stick, returning their
+///    trial traction with the stick tangent — those that stuck at the last converged
+///    increment, and in an attempt that `retry`s an increment after a failed one, the
+///    slipping ones too (the increment in which points under a tool reverse their slip:
+///    a die that stops pressing and starts dragging). At the
+///    first iterate the rigid bodies and prescribed nodes have moved but the body has not
+///    followed yet, so with a tangential penalty far stiffer than the body (`ε_T` = 100 E
+///    per node) the trial traction of a point that will stick is already past the Coulomb
+///    cone: taken as slip, the point has no tangential stiffness, the first correction
+///    moves the body surface by the slip forces over the body's stiffness — hundreds of
+///    times the elastic slip `μN/ε_T` — every trial reverses, and Newton cycles between
+///    the two slip directions (the onset of sliding under a flat punch, or a die starting to
+///    iron, failed at every step down to Δt/1024). With stick held, the first correction is
+///    the body's elastic response to the motion; the return mapping then finds the slipping
+///    points from a body that has moved (the elastic predictor / plastic corrector of return
+///    mapping, taken to the global iteration).
+pub fn hold_first_correction(
+    contact: &mut ContactSystem,
+    model: &Model,
+    (predicted, retry): (bool, bool),
+    held: &mut Vec<usize>,
+) -> usize {
     held.clear();
-    let points = contact.committed.iter().flatten().zip(contact.current.iter().flatten());
-    for (flat, (was, now)) in points.enumerate() {
-        let located_open = now.eval.is_some_and(|e| e.state == ContactState::Open);
-        if was.closed && located_open && now.segment.is_some() {
-            held.push(flat);
+    let mut stick = Vec::new();
+    let mut flat = 0;
+    for (ip, pair) in model.contacts.iter().enumerate() {
+        for is in 0..pair.slaves.len() {
+            let (was, now) = (&contact.committed[ip][is], &contact.current[ip][is]);
+            let state = now.eval.map(|e| e.state);
+            let lift_off = predicted && was.closed && state == Some(ContactState::Open) && now.segment.is_some();
+            if lift_off {
+                held.push(flat);
+            }
+            let closed = lift_off || state.is_some_and(|s| s != ContactState::Open);
+            if pair.law.mu > 0.0 && was.closed && closed && (was.stuck || retry) {
+                stick.push(flat);
+            }
+            flat += 1;
         }
     }
-    for &flat in held.iter() {
-        let (ip, is) = contact.point_index(flat);
+    for &f in held.iter() {
+        let (ip, is) = contact.point_index(f);
         let hold = Decision {
             state: ContactState::Stick,
             segment: contact.current[ip][is].segment,
         };
-        contact.freeze(flat, hold);
+        contact.freeze(f, hold);
     }
+    for &f in &stick {
+        contact.hold_stick(f);
+    }
+    held.extend(stick);
+    held.sort_unstable();
+    held.dedup();
     held.len()
 }

@@ -1,7 +1,7 @@
 //! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
 //! optional backtracking line search.
 
-use super::active_set::{hold_predicted_lift_offs, ActiveSetWatch};
+use super::active_set::{hold_first_correction, ActiveSetWatch};
 use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
@@ -67,7 +67,7 @@ pub struct Workspace {
     r: Vec<f64>,
     du: Vec<f64>,
     frozen: Vec<bool>,
-    /// Points held closed for the first correction of a predicted start.
+    /// Points held (closed, or in stick) for the first correction of an attempt.
     held: Vec<usize>,
     /// `‖R‖` at each iterate of the last attempt.
     pub residuals: Vec<f64>,
@@ -79,7 +79,7 @@ pub struct Workspace {
 /// `on_iteration` receives one record per correction; failures leave `state` dirty (the
 /// caller restores the last converged one). `predicted`: `state` is an extrapolated start;
 /// points it finds open that were closed at the last converged increment are held closed
-/// for the first correction ([`hold_predicted_lift_offs`]; the first residual recorded is
+/// for the first correction ([`hold_first_correction`]; the first residual recorded is
 /// then that of the held state).
 ///
 /// Converged when `‖R‖ ≤ max(tol · F_ref, residual_abs, ε_round)` and the energy norm of the
@@ -125,7 +125,8 @@ pub fn solve_increment(
             assembled = Assembled::Full;
         }
         if !started {
-            if predicted && hold_predicted_lift_offs(&mut state.contact, &mut ws.held) > 0 {
+            let retry = attempt > 0 && !predicted;
+            if hold_first_correction(&mut state.contact, model, (predicted, retry), &mut ws.held) > 0 {
                 asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
             }
             ws.watch.start(&state.contact);
@@ -206,7 +207,11 @@ pub fn solve_increment(
         e_last = energy;
         apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
         // the held points are free again once the first correction is computed: the line
-        // search's trials (and so the next iterate) are assembled with their own state
+        // search's trials (and so the next iterate) are assembled with their own state;
+        // a correction made with stick held is the elastic predictor, taken in full (the
+        // return mapping at its end finds the slipping points; backtracking on ‖R‖ from it
+        // would undo the motion the stick tangent predicted)
+        let elastic_predictor = state.contact.stick_held_count() > 0;
         for flat in ws.held.drain(..) {
             state.contact.release(flat);
         }
@@ -219,7 +224,7 @@ pub fn solve_increment(
             && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE)
             && r_prev.is_some_and(|rp| rp > 0.0 && rn * (rn / rp) <= tol);
         let want_tangent = !likely_converged;
-        let (step, reuse) = if !settings.line_search {
+        let (step, reuse) = if !settings.line_search || elastic_predictor {
             (1.0, None)
         } else {
             // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)

@@ -45,6 +45,7 @@ fn problem(scheme: TransferKind, slave_x: f64, same_segment: bool) -> PointProbl
             touch_gap: None,
         }),
         forced: None,
+        stick_held: false,
         at_vertex: None,
     }
 }
