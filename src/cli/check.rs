@@ -60,6 +60,18 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
             )?;
         }
     }
+    for (ib, body) in m.rigid.iter().enumerate() {
+        if let contrail::model::RigidShape::Surface { pieces } = &body.shape {
+            outln!(
+                "  {}",
+                outline_side(
+                    &body.name,
+                    pieces,
+                    &contrail::scene::build_pairs::convex_vertices(m, ib)
+                )
+            )?;
+        }
+    }
     for c in &m.contacts {
         outln!(
             "  contact {}: {} slaves, ε_N = {:e}, ε_T = {:e}, μ = {}, transfer = {}",
@@ -72,4 +84,31 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         )?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Where a rigid outline's solid is: the inward normal (the tangent turned +90°) in the
+/// middle of its first piece, and its convex vertices.
+fn outline_side(name: &str, pieces: &[contrail::model::Piece], convex: &[usize]) -> String {
+    let (p, t) = pieces[0].eval(0.0);
+    let len = t[0].hypot(t[1]);
+    let inward = [-t[1] / len + 0.0, t[0] / len + 0.0];
+    let (a, _) = pieces[0].eval(-1.0);
+    let (b, _) = pieces[0].eval(1.0);
+    let vertices = if convex.is_empty() {
+        "no convex vertex".to_string()
+    } else {
+        format!("convex vertices {convex:?} (contact points where a pair's slave nodes face them)")
+    };
+    format!(
+        "rigid {name}: outline of {} pieces, the rigid body on the left of travel: its first piece runs from [{:.4}, {:.4}] to [{:.4}, {:.4}], solid towards [{:.3}, {:.3}] from [{:.4}, {:.4}]; {vertices}",
+        pieces.len(),
+        a[0],
+        a[1],
+        b[0],
+        b[1],
+        inward[0],
+        inward[1],
+        p[0],
+        p[1]
+    )
 }

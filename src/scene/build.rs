@@ -14,14 +14,14 @@ use crate::model::{
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
 
-struct Ctx<'a> {
+pub(super) struct Ctx<'a> {
     src: &'a SceneSource,
     /// Per body: its Gmsh file and the physical curves that are not faces (for errors).
     mesh_files: Vec<Option<MeshFile>>,
 }
 
 impl Ctx<'_> {
-    fn err(&self, near: &str, message: String, hint: &str) -> SceneError {
+    pub(super) fn err(&self, near: &str, message: String, hint: &str) -> SceneError {
         SceneError::Invalid {
             origin: self.src.origin.clone(),
             location: locate(&self.src.text, near),
@@ -92,7 +92,7 @@ fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<V
     Ok(nodes)
 }
 
-fn body_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
+pub(super) fn body_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
     model.bodies.iter().position(|b| b.name == name).ok_or_else(|| {
         let known: Vec<&str> = model.bodies.iter().map(|b| b.name.as_str()).collect();
         cx.err(
@@ -158,7 +158,19 @@ fn line_pieces(pts: &[[f64; 2]]) -> impl Iterator<Item = Piece> + '_ {
 }
 
 fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
-    let hint = "give exactly one of `point`, `polyline`, `arc` or `outline`";
+    let hint = "give exactly one of `point`, `polyline`, `arc`, `outline` or `polygon`";
+    if let (Some(poly), None, None, None, None) = (&r.polygon, &r.point, &r.polyline, &r.arc, &r.outline) {
+        return Ok(RigidShape::Surface {
+            pieces: line_pieces(&poly.vertices()).collect(),
+        });
+    }
+    if r.polygon.is_some() {
+        return Err(cx.err(
+            &r.name,
+            format!("rigid body `{}` has a polygon and another shape", r.name),
+            hint,
+        ));
+    }
     match (&r.point, &r.polyline, &r.arc, &r.outline) {
         (Some(p), None, None, None) => Ok(RigidShape::Point { at: *p }),
         (None, Some(pts), None, None) if pts.len() >= 2 => Ok(RigidShape::Surface {
@@ -344,7 +356,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
     let mut implied = Vec::new();
     for c in &s.contacts {
         let mut pair = contact_pair(&cx, &m, c, h)?;
-        implied.extend(implied_pairs(&cx, &m, c, &mut pair)?);
+        implied.extend(build_pairs::implied_pairs(&cx, &m, c, &mut pair)?);
         m.contacts.push(pair);
     }
     // the vertices a scene names as slaves keep their pairs; the others get one per outline
@@ -359,8 +371,8 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         .collect();
     for (pair, slave_body) in implied {
         match pair {
-            Implied::SecondPass(p) => m.contacts.push(p),
-            Implied::Vertices(ip) => {
+            build_pairs::Implied::SecondPass(p) => m.contacts.push(p),
+            build_pairs::Implied::Vertices(ip) => {
                 if let Some(p) = build_pairs::vertex_pair(&m, &m.contacts[ip], slave_body, &taken) {
                     m.contacts.push(p);
                 }
@@ -368,6 +380,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         }
     }
     build_pairs::own_vertices(&mut m);
+    super::initial_contact::refuse_initial_overlaps(&cx, &m, s)?;
     for mon in s.monitors.iter() {
         let target = match (&mon.rigid, &mon.body, &mon.nodes) {
             (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(&cx, &m, r)?),
@@ -499,52 +512,4 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         search_radius: c.search_radius.unwrap_or(2.0 * h),
         owned_vertices: Vec::new(),
     })
-}
-
-/// A pair a scene's `[[contact]]` implies besides itself.
-enum Implied {
-    /// The second pass of a two-pass pair.
-    SecondPass(ContactPair),
-    /// The convex vertices of the rigid master of the pair with this index.
-    Vertices(usize),
-}
-
-/// The pairs `c` implies (`pair` is its first pass; with its slave body): the second pass of
-/// a two-pass pair (which halves `pair`'s penalties), or the vertices of its rigid master.
-fn implied_pairs(
-    cx: &Ctx,
-    m: &Model,
-    c: &ContactSpec,
-    pair: &mut ContactPair,
-) -> Result<Vec<(Implied, usize)>, SceneError> {
-    let slave_body = c.slave.body.as_deref().map(|b| body_index(cx, m, b)).transpose()?;
-    let mut out = Vec::new();
-    match (&pair.master, slave_body) {
-        (Master::Face { .. }, Some(sb)) if c.two_pass => {
-            let second = build_pairs::second_pass(m, pair, sb).ok_or_else(|| {
-                cx.err(
-                    &c.name,
-                    format!(
-                        "contact `{}`: two_pass needs slave nodes that span a face of their body",
-                        c.name
-                    ),
-                    "give `slave.nodes` a set of boundary nodes (e.g. \"bottom\"), or set two_pass = false",
-                )
-            })?;
-            out.push((Implied::SecondPass(second), sb));
-        }
-        _ if c.two_pass => {
-            return Err(cx.err(
-                &c.name,
-                format!(
-                    "contact `{}`: two_pass is for slave nodes on the face of another deformable body",
-                    c.name
-                ),
-                "use `slave = { body, nodes }` with `master = { body, face }`, or remove two_pass",
-            ))
-        }
-        (Master::Rigid { .. }, Some(sb)) if c.vertices => out.push((Implied::Vertices(m.contacts.len()), sb)),
-        _ => {}
-    }
-    Ok(out)
 }

@@ -1,6 +1,9 @@
 //! Contact pairs a scene implies besides those it lists: the second pass of a two-pass pair,
 //! the convex vertices of a rigid outline as slave points, and which pair owns which vertex.
 
+use super::build::{body_index, Ctx};
+use super::types::ContactSpec;
+use super::SceneError;
 use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave};
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
@@ -150,6 +153,54 @@ pub fn own_vertices(m: &mut Model) {
             pair.owned_vertices = owners.iter().filter(|(b, _)| *b == body).map(|(_, o)| *o).collect();
         }
     }
+}
+
+/// A pair a scene's `[[contact]]` implies besides itself.
+pub(super) enum Implied {
+    /// The second pass of a two-pass pair.
+    SecondPass(ContactPair),
+    /// The convex vertices of the rigid master of the pair with this index.
+    Vertices(usize),
+}
+
+/// The pairs `c` implies (`pair` is its first pass; with its slave body): the second pass of
+/// a two-pass pair (which halves `pair`'s penalties), or the vertices of its rigid master.
+pub(super) fn implied_pairs(
+    cx: &Ctx,
+    m: &Model,
+    c: &ContactSpec,
+    pair: &mut ContactPair,
+) -> Result<Vec<(Implied, usize)>, SceneError> {
+    let slave_body = c.slave.body.as_deref().map(|b| body_index(cx, m, b)).transpose()?;
+    let mut out = Vec::new();
+    match (&pair.master, slave_body) {
+        (Master::Face { .. }, Some(sb)) if c.two_pass => {
+            let second = second_pass(m, pair, sb).ok_or_else(|| {
+                cx.err(
+                    &c.name,
+                    format!(
+                        "contact `{}`: two_pass needs slave nodes that span a face of their body",
+                        c.name
+                    ),
+                    "give `slave.nodes` a set of boundary nodes (e.g. \"bottom\"), or set two_pass = false",
+                )
+            })?;
+            out.push((Implied::SecondPass(second), sb));
+        }
+        _ if c.two_pass => {
+            return Err(cx.err(
+                &c.name,
+                format!(
+                    "contact `{}`: two_pass is for slave nodes on the face of another deformable body",
+                    c.name
+                ),
+                "use `slave = { body, nodes }` with `master = { body, face }`, or remove two_pass",
+            ))
+        }
+        (Master::Rigid { .. }, Some(sb)) if c.vertices => out.push((Implied::Vertices(m.contacts.len()), sb)),
+        _ => {}
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

@@ -31,6 +31,26 @@ pub const BUILTINS: &[Builtin] = &[
         name: "half-disc",
         text: include_str!("../../scenes/half-disc.toml"),
     },
+    Builtin {
+        name: "contact-patch",
+        text: include_str!("../../scenes/contact-patch.toml"),
+    },
+    Builtin {
+        name: "ironing",
+        text: include_str!("../../scenes/ironing.toml"),
+    },
+    Builtin {
+        name: "flat-punch",
+        text: include_str!("../../scenes/flat-punch.toml"),
+    },
+    Builtin {
+        name: "capstan",
+        text: include_str!("../../scenes/capstan.toml"),
+    },
+    Builtin {
+        name: "capstan-polygon",
+        text: include_str!("../../scenes/capstan-polygon.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.

@@ -6,6 +6,7 @@
 mod build;
 pub mod build_pairs;
 pub mod builtin;
+pub mod initial_contact;
 mod mesh;
 pub mod monitors;
 mod overrides;

@@ -229,9 +229,48 @@ pub struct RigidSpec {
     /// body on the left of the direction of travel (a block with a rounded corner, a drum
     /// with flats, a punch with fillets).
     pub outline: Option<Vec<PieceSpec>>,
+    /// A regular polygon (a faceted drum): the outline through the vertices of a regular
+    /// polygon inscribed in a circle, counter-clockwise (the rigid body inside).
+    pub polygon: Option<PolygonSpec>,
     /// Prescribed translation histories.
     #[serde(default, rename = "move")]
     pub motion: MotionSpec,
+}
+
+/// A regular polygon of `sides` facets inscribed in the circle `centre`, `radius`, turned so
+/// that the middle of one facet is at `facet_at_deg`; the outline runs counter-clockwise
+/// through its vertices from the last vertex at or before `from_deg` to the first at or after
+/// `to_deg` (the facet-count study of a drum: `--set rigid.drum.polygon.sides=16`).
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PolygonSpec {
+    pub centre: [f64; 2],
+    /// Circumradius (the vertices' distance from the centre).
+    pub radius: f64,
+    pub sides: usize,
+    pub from_deg: f64,
+    pub to_deg: f64,
+    #[serde(default)]
+    pub facet_at_deg: f64,
+}
+
+impl PolygonSpec {
+    /// The outline's points (vertices), counter-clockwise.
+    pub fn vertices(&self) -> Vec<[f64; 2]> {
+        let step = 360.0 / self.sides as f64;
+        let angle = |k: i64| self.facet_at_deg + (k as f64 + 0.5) * step;
+        let first = ((self.from_deg - self.facet_at_deg) / step - 0.5).floor() as i64;
+        let last = ((self.to_deg - self.facet_at_deg) / step - 0.5).ceil() as i64;
+        (first..=last)
+            .map(|k| {
+                let t = angle(k).to_radians();
+                [
+                    self.centre[0] + self.radius * t.cos(),
+                    self.centre[1] + self.radius * t.sin(),
+                ]
+            })
+            .collect()
+    }
 }
 
 /// One piece of a composite rigid outline: exactly one of `line` or `arc`.

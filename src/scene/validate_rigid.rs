@@ -3,7 +3,7 @@
 //! with the orientation.
 
 use super::{named, sub, Check, Extent, P, R};
-use crate::scene::types::{ArcSide, ArcSpec, PieceSpec, RigidSpec};
+use crate::scene::types::{ArcSide, ArcSpec, PieceSpec, PolygonSpec, RigidSpec};
 
 /// Relative tolerance on the joints of an outline (of the outline's size).
 pub const JOINT_TOL: f64 = 1e-9;
@@ -22,6 +22,9 @@ pub(super) fn check(c: &Check, i: usize, r: &RigidSpec, ext: &mut Extent) -> R {
     }
     if let Some(pieces) = &r.outline {
         outline(c, &sub(&p, "outline"), &format!("{key}.outline"), pieces, ext)?;
+    }
+    if let Some(poly) = &r.polygon {
+        polygon(c, &sub(&p, "polygon"), &format!("{key}.polygon"), poly, ext)?;
     }
     for (k, m) in [("x", &r.motion.x), ("y", &r.motion.y)] {
         if let Some(m) = m {
@@ -100,6 +103,39 @@ fn arc(c: &Check, ap: &[P], key: &str, a: &ArcSpec, ext: &mut Extent) -> R {
             ));
         }
     }
+    Ok(())
+}
+
+fn polygon(c: &Check, pp: &[P], key: &str, poly: &PolygonSpec, ext: &mut Extent) -> R {
+    c.point(&sub(pp, "centre"), &format!("{key}.centre"), poly.centre, ext)?;
+    c.positive(&sub(pp, "radius"), &format!("{key}.radius"), poly.radius)?;
+    for (k, v) in [
+        ("from_deg", poly.from_deg),
+        ("to_deg", poly.to_deg),
+        ("facet_at_deg", poly.facet_at_deg),
+    ] {
+        c.finite(&sub(pp, k), &format!("{key}.{k}"), v)?;
+    }
+    if !(3..=100_000).contains(&poly.sides) {
+        return Err(c.fail(
+            &sub(pp, "sides"),
+            &format!("{key}.sides"),
+            poly.sides,
+            "a regular polygon has 3 to 100 000 sides",
+            "give e.g. sides = 8",
+        ));
+    }
+    let sweep = poly.to_deg - poly.from_deg;
+    if !(sweep > 0.0 && sweep <= 360.0) {
+        return Err(c.fail(
+            &sub(pp, "to_deg"),
+            &format!("{key}.to_deg"),
+            poly.to_deg,
+            "the outline runs counter-clockwise from from_deg to to_deg, at most a turn",
+            "give from_deg < to_deg ≤ from_deg + 360",
+        ));
+    }
+    ext.add(poly.centre[0].abs().max(poly.centre[1].abs()) + poly.radius);
     Ok(())
 }
 
