@@ -15,6 +15,7 @@
 
 use super::scalar::{Scalar, V2};
 use super::surface::face::FaceSegment;
+use super::surface::hermite::HermiteSegment;
 use super::surface::rigid_arc::RigidArc;
 use super::surface::rigid_line::RigidLine;
 use super::surface::MasterSegment;
@@ -26,6 +27,8 @@ use crate::model::Piece;
 pub enum SegmentGeom<S: Scalar> {
     /// Segment of a deformable face between the current positions of two nodes.
     Face(FaceSegment<S>),
+    /// C1-smoothed segment of a deformable face (cubic Hermite through its neighbours).
+    Hermite(HermiteSegment<S>),
     /// Straight piece of a rigid outline.
     RigidLine(RigidLine),
     /// Circular-arc piece of a rigid outline.
@@ -61,6 +64,11 @@ impl<S: Scalar> SegmentGeom<S> {
         SegmentGeom::Face(FaceSegment { x1, x2 })
     }
 
+    /// Hermite face segment `x1 → x2` with its neighbouring nodes (see [`HermiteSegment`]).
+    pub fn hermite(x0: Option<V2<S>>, x1: V2<S>, x2: V2<S>, x3: Option<V2<S>>) -> Self {
+        SegmentGeom::Hermite(HermiteSegment { x0, x1, x2, x3 })
+    }
+
     /// Rigid piece translated by `offset`.
     pub fn from_piece(piece: &Piece, offset: [f64; 2]) -> Self {
         match *piece {
@@ -85,6 +93,7 @@ impl<S: Scalar> SegmentGeom<S> {
     fn surface(&self) -> &dyn MasterSegment<S> {
         match self {
             SegmentGeom::Face(f) => f,
+            SegmentGeom::Hermite(h) => h,
             SegmentGeom::RigidLine(l) => l,
             SegmentGeom::RigidArc(a) => a,
         }

@@ -41,7 +41,7 @@
 use super::geometry::SegmentGeom;
 use super::search::{closest, walk, Located, SegmentGrid, XI_TOL};
 use super::system::Config;
-use crate::model::{ContactPair, Master, Slave};
+use crate::model::{ContactPair, Master, Slave, Smoothing};
 
 /// How far past its end (in `ξ`, i.e. 2.5 % of the segment's length) a segment held by the
 /// solver for a chattering point stays admissible when the point is verified. A point that
@@ -82,7 +82,8 @@ pub fn locate(
     let (found, wedge) = match start {
         Some(s0) => {
             let loc = nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb);
-            match concave_wedge(loc, s0, rs, &geom, &nb) {
+            let faceted = pair.smoothing == Smoothing::None;
+            match concave_wedge(loc, s0, rs, &geom, &nb).filter(|_| faceted) {
                 Some(held) => (Some(held), true),
                 None => (Some(loc), false),
             }
@@ -147,7 +148,8 @@ pub fn held(cfg: &Config, pair: &ContactPair, slave: Slave, segment: Option<usiz
         segment,
         located: Some(loc),
         excluded: false,
-        pinned: concave_wedge(loc, s, rs, &geom, &nb).is_some(),
+        // a C1-smoothed face has no concave kink to be pinned to
+        pinned: pair.smoothing == Smoothing::None && concave_wedge(loc, s, rs, &geom, &nb).is_some(),
     }
 }
 

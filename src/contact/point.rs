@@ -24,14 +24,18 @@ use crate::model::Piece;
 use nalgebra::{Const, U1};
 use num_dual::Dual2SVec64;
 
-/// Largest number of nodes one contact point couples (slave + two segments of two nodes).
-pub const MAX_NODES: usize = 5;
+/// Largest number of nodes one contact point couples: the slave and two segments `A`, `B`
+/// of up to four nodes each (a C1-smoothed segment with its two neighbours).
+pub const MAX_NODES: usize = 9;
 
 /// Where a point or segment end comes from: a local unknown (node slot) or fixed geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SegSource {
     /// A deformable segment whose ends are local node slots.
     Face([usize; 2]),
+    /// A C1-smoothed deformable segment: the slots of the neighbour before (none at a free
+    /// end), the two ends, and the neighbour after.
+    Hermite([Option<usize>; 4]),
     /// A rigid piece translated by an offset.
     Rigid(Piece, [f64; 2]),
 }
@@ -111,6 +115,10 @@ pub struct PointEval<S: Scalar> {
 fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
     match src {
         SegSource::Face([a, b]) => SegmentGeom::linear(q[*a], q[*b]),
+        SegSource::Hermite([p, a, b, n]) => {
+            let at = |i: &Option<usize>| i.map(|i| q[i]);
+            SegmentGeom::hermite(at(p), q[a.expect("end")], q[b.expect("end")], at(n))
+        }
         SegSource::Rigid(p, off) => SegmentGeom::from_piece(p, *off),
     }
 }
@@ -214,7 +222,11 @@ impl PointProblem {
             2 => self.rk::<4>(r, k),
             3 => self.rk::<6>(r, k),
             4 => self.rk::<8>(r, k),
-            _ => self.rk::<10>(r, k),
+            5 => self.rk::<10>(r, k),
+            6 => self.rk::<12>(r, k),
+            7 => self.rk::<14>(r, k),
+            8 => self.rk::<16>(r, k),
+            _ => self.rk::<18>(r, k),
         }
     }
 

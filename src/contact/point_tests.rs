@@ -159,7 +159,8 @@ fn backward_crossing_and_rigid_slave_tangents_match_fd() {
         fd_check(&p, ContactState::Stick);
         // rigid slave point: slots shift down by one
         let mut q = p;
-        q.x = [p.x[1], p.x[2], p.x[3], [0.0; 2], [0.0; 2]];
+        q.x = [[0.0; 2]; MAX_NODES];
+        q.x[..3].copy_from_slice(&p.x[1..4]);
         q.n_nodes = 3;
         q.slave = SlaveSource::Fixed(p.x[0]);
         q.seg_b = SegSource::Face([0, 1]);
@@ -345,7 +346,9 @@ fn point_pinned_to_a_concave_vertex_has_fd_consistent_tangents() {
     fd_check(&wedge(0.0, inside), ContactState::Slip);
     // rigid slave (the corner C) pinned to a node of the face
     let mut q = wedge(1e3, inside);
-    q.x = [q.x[1], q.x[2], q.x[3], [0.0; 2], [0.0; 2]];
+    let moved = [q.x[1], q.x[2], q.x[3]];
+    q.x = [[0.0; 2]; MAX_NODES];
+    q.x[..3].copy_from_slice(&moved);
     q.n_nodes = 3;
     q.slave = SlaveSource::Fixed(inside);
     q.seg_b = SegSource::Face([2, 0]);
@@ -398,4 +401,68 @@ fn pinned_and_segment_forms_agree_at_the_boundary_of_the_wedge() {
             );
         }
     }
+}
+
+/// A rigid vertex (slave) on a C1-smoothed face: slots 1–5 are five face nodes on a bent
+/// face, `A` = Hermite([1, 2] with neighbours 0→slot 1's predecessor), `B` the next segment.
+fn hermite_base(law: ContactLaw, crossing: bool) -> PointProblem {
+    let mut x = [[0.0; 2]; MAX_NODES];
+    // a face bent downwards (body above, face running +x: outward normal −y)
+    x[1] = [-0.9, 0.12];
+    x[2] = [-0.3, 0.02];
+    x[3] = [0.3, 0.0];
+    x[4] = [0.85, 0.05];
+    x[5] = [1.3, 0.16];
+    let seg_a = SegSource::Hermite([Some(1), Some(2), Some(3), Some(4)]);
+    let seg_b = SegSource::Hermite([Some(2), Some(3), Some(4), Some(5)]);
+    PointProblem {
+        law,
+        scheme: TransferKind::Continuous,
+        x,
+        n_nodes: 6,
+        slave: SlaveSource::Node(0),
+        seg_b,
+        closed: Some(Closed {
+            stored: StoredTraction {
+                xi: if crossing { 0.9 } else { -0.4 },
+                t1: 0.02,
+                a11: 0.09,
+            },
+            seg_a: if crossing { seg_a } else { seg_b },
+            path: Path {
+                direction: i8::from(crossing),
+                between: 0.0,
+            },
+            touch_gap: None,
+        }),
+        forced: None,
+        stick_held: false,
+        at_vertex: None,
+    }
+}
+
+#[test]
+fn hermite_face_tangents_match_fd_in_every_state() {
+    for crossing in [false, true] {
+        let mut p = hermite_base(ContactLaw { mu: 1e3, ..LAW }, crossing);
+        p.x[0] = [0.45, 0.008]; // slave just inside the face near x = 0.45
+        fd_check(&p, ContactState::Stick);
+        p.law.mu = 0.01;
+        fd_check(&p, ContactState::Slip);
+        p.law.mu = 0.0;
+        fd_check(&p, ContactState::Slip);
+        p.law.mu = 0.3;
+        p.closed = None;
+        fd_check(&p, ContactState::Stick);
+    }
+    // a rigid slave (a vertex of a rigid outline) on the smoothed face: the face's nodes only
+    let mut p = hermite_base(ContactLaw { mu: 0.01, ..LAW }, true);
+    let slave = [0.45, 0.008];
+    p.x.copy_within(1..6, 0);
+    p.x[5] = [0.0; 2];
+    p.n_nodes = 5;
+    p.slave = SlaveSource::Fixed(slave);
+    p.seg_b = SegSource::Hermite([Some(1), Some(2), Some(3), Some(4)]);
+    p.closed.as_mut().unwrap().seg_a = SegSource::Hermite([Some(0), Some(1), Some(2), Some(3)]);
+    fd_check(&p, ContactState::Slip);
 }

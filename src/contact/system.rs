@@ -11,7 +11,7 @@ use super::pairing::{self, Pairing};
 use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
-use crate::model::{ContactPair, Master, Model, RigidShape, Slave};
+use crate::model::{ContactPair, Master, Model, RigidShape, Slave, Smoothing};
 
 /// History of one slave point at the last converged increment.
 #[derive(Debug, Clone, Copy)]
@@ -126,27 +126,49 @@ impl Config<'_> {
         [at[0] + o[0], at[1] + o[1]]
     }
 
-    fn seg_source(&self, pair: &ContactPair, k: usize) -> (SegSource, Option<[usize; 2]>) {
+    /// The global nodes (or the rigid piece) of segment `k` of a pair's master.
+    fn seg_nodes(&self, pair: &ContactPair, k: usize) -> SegNodes {
         match &pair.master {
-            Master::Face { segments, .. } => (SegSource::Face([0, 1]), Some(segments[k])),
+            Master::Face { segments, prev, next, .. } => match pair.smoothing {
+                Smoothing::None => SegNodes::Linear(segments[k]),
+                Smoothing::Hermite => SegNodes::Hermite([
+                    prev[k].map(|p| segments[p][0]),
+                    Some(segments[k][0]),
+                    Some(segments[k][1]),
+                    next[k].map(|n| segments[n][1]),
+                ]),
+            },
             Master::Rigid { body, .. } => {
                 let b = &self.model.rigid[*body];
                 let RigidShape::Surface { pieces } = &b.shape else {
                     unreachable!("validated")
                 };
-                (SegSource::Rigid(pieces[k], b.offset(self.t)), None)
+                SegNodes::Rigid(pieces[k], b.offset(self.t))
             }
         }
     }
 
     /// Current geometry of segment `k` of a pair's master.
     pub fn segment(&self, pair: &ContactPair, k: usize) -> SegmentGeom<f64> {
-        match self.seg_source(pair, k) {
-            (_, Some([a, b])) => SegmentGeom::linear(self.node(a), self.node(b)),
-            (SegSource::Rigid(p, o), None) => SegmentGeom::from_piece(&p, o),
-            _ => unreachable!(),
+        match self.seg_nodes(pair, k) {
+            SegNodes::Linear([a, b]) => SegmentGeom::linear(self.node(a), self.node(b)),
+            SegNodes::Hermite([p, a, b, n]) => SegmentGeom::hermite(
+                p.map(|p| self.node(p)),
+                self.node(a.expect("segment end")),
+                self.node(b.expect("segment end")),
+                n.map(|n| self.node(n)),
+            ),
+            SegNodes::Rigid(p, o) => SegmentGeom::from_piece(&p, o),
         }
     }
+}
+
+/// Where a master segment's geometry comes from.
+enum SegNodes {
+    Linear([usize; 2]),
+    /// The neighbour before, the two ends, the neighbour after (global nodes).
+    Hermite([Option<usize>; 4]),
+    Rigid(crate::model::Piece, [f64; 2]),
 }
 
 /// Local node slots of one contact point (at most [`MAX_NODES`], kept on the stack: the
@@ -170,9 +192,10 @@ impl Slots {
         self.len - 1
     }
     fn source(&mut self, cfg: &Config, pair: &ContactPair, k: usize) -> SegSource {
-        match cfg.seg_source(pair, k) {
-            (_, Some([a, b])) => SegSource::Face([self.slot(a), self.slot(b)]),
-            (src, None) => src,
+        match cfg.seg_nodes(pair, k) {
+            SegNodes::Linear([a, b]) => SegSource::Face([self.slot(a), self.slot(b)]),
+            SegNodes::Hermite(nodes) => SegSource::Hermite(nodes.map(|n| n.map(|n| self.slot(n)))),
+            SegNodes::Rigid(p, o) => SegSource::Rigid(p, o),
         }
     }
 }

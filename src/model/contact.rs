@@ -71,6 +71,20 @@ pub struct ContactPair {
     pub search_radius: f64,
     /// Vertices of a rigid master outline owned by another pair's slave.
     pub owned_vertices: Vec<OwnedVertex>,
+    /// How a deformable master face is interpolated between its nodes.
+    pub smoothing: Smoothing,
+}
+
+/// Interpolation of a deformable master face (rigid masters are exact curves).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum Smoothing {
+    /// Straight segments between the nodes (faceted; the normal jumps at each node).
+    #[default]
+    None,
+    /// C1 cubic Hermite segments through the nodes, tangents from the neighbours
+    /// (`contact::surface::hermite`; Wriggers, Krstulovic-Opara & Korelc 2001).
+    Hermite,
 }
 
 /// Penalty and friction parameters of a contact pair.

@@ -511,5 +511,6 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         transfer: c.transfer,
         search_radius: c.search_radius.unwrap_or(2.0 * h),
         owned_vertices: Vec::new(),
+        smoothing: c.master_smoothing,
     })
 }

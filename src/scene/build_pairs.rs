@@ -4,7 +4,7 @@
 use super::build::{body_index, Ctx};
 use super::types::ContactSpec;
 use super::SceneError;
-use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave};
+use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave, Smoothing};
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
 /// joined tangentially to its lines has none, a polygon of 1000 facets turns 0.0063 rad.
@@ -73,6 +73,7 @@ pub fn second_pass(m: &Model, pair: &mut ContactPair, slave_body: usize) -> Opti
         transfer: pair.transfer,
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
+        smoothing: pair.smoothing,
     })
 }
 
@@ -127,6 +128,7 @@ pub fn vertex_pair(m: &Model, pair: &ContactPair, slave_body: usize, taken: &[(u
         transfer: pair.transfer,
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
+        smoothing: Smoothing::Hermite,
     })
 }
 

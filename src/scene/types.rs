@@ -392,6 +392,10 @@ pub struct ContactSpec {
     /// refused: that is almost always an outline listed the wrong way round.
     #[serde(default)]
     pub allow_initial_penetration: bool,
+    /// Interpolation of a deformable master face: `"none"` (straight segments) or `"hermite"`
+    /// (C1 cubic segments through the nodes: the normal no longer jumps at nodes).
+    #[serde(default)]
+    pub master_smoothing: crate::model::Smoothing,
 }
 
 fn yes() -> bool {

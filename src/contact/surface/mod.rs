@@ -8,6 +8,7 @@
 //! `ζ = (r_s − ρ(ξ))·n`, negative when the slave has penetrated.
 
 pub mod face;
+pub mod hermite;
 pub mod rigid_arc;
 pub mod rigid_line;
 
