@@ -102,7 +102,12 @@ fn contact_patch_step_refinement_ends_in_the_same_state() {
     let (_, m1) = common::solve_ok(&p1);
     for inc in ["stepping.increments=2", "stepping.increments=4"] {
         let (_, m) = common::solve_ok(&common::scene("contact-patch", &[inc]));
-        let diff = m1.final_u.iter().zip(&m.final_u).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let diff = m1
+            .final_u
+            .iter()
+            .zip(&m.final_u)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
         println!("{inc}: largest displacement difference {diff:.2e}");
         assert!(diff < 1e-9 * 1e-3 * 1e3, "{inc}: {diff}");
         assert!(m.increments.iter().all(|i| i.iterations <= 3));

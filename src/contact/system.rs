@@ -129,7 +129,9 @@ impl Config<'_> {
     /// The global nodes (or the rigid piece) of segment `k` of a pair's master.
     fn seg_nodes(&self, pair: &ContactPair, k: usize) -> SegNodes {
         match &pair.master {
-            Master::Face { segments, prev, next, .. } => match pair.smoothing {
+            Master::Face {
+                segments, prev, next, ..
+            } => match pair.smoothing {
                 Smoothing::None => SegNodes::Linear(segments[k]),
                 Smoothing::Hermite => SegNodes::Hermite([
                     prev[k].map(|p| segments[p][0]),

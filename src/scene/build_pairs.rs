@@ -4,7 +4,9 @@
 use super::build::{body_index, Ctx};
 use super::types::ContactSpec;
 use super::SceneError;
-use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave, Smoothing};
+use crate::model::{
+    chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave, Smoothing,
+};
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
 /// joined tangentially to its lines has none, a polygon of 1000 facets turns 0.0063 rad.

@@ -70,7 +70,12 @@ impl<S: Scalar> HermiteSegment<S> {
             s3 - s2,
         ];
         // d/ds and d²/ds² of the basis
-        let dh = [s2 * 6.0 - s * 6.0, s2 * 3.0 - s * 4.0 + 1.0, s * 6.0 - s2 * 6.0, s2 * 3.0 - s * 2.0];
+        let dh = [
+            s2 * 6.0 - s * 6.0,
+            s2 * 3.0 - s * 4.0 + 1.0,
+            s * 6.0 - s2 * 6.0,
+            s2 * 3.0 - s * 2.0,
+        ];
         let ddh = [s * 12.0 - 6.0, s * 6.0 - 4.0, S::from(6.0) - s * 12.0, s * 6.0 - 2.0];
         let comb = |w: &[S; 4]| {
             add(
@@ -79,7 +84,11 @@ impl<S: Scalar> HermiteSegment<S> {
             )
         };
         // dξ = 2 ds
-        (comb(&h), scale(comb(&dh), S::from(0.5)), scale(comb(&ddh), S::from(0.25)))
+        (
+            comb(&h),
+            scale(comb(&dh), S::from(0.5)),
+            scale(comb(&ddh), S::from(0.25)),
+        )
     }
 }
 
@@ -129,7 +138,13 @@ impl<S: Scalar> MasterSegment<S> for HermiteSegment<S> {
 
     fn length(&self) -> S {
         // Gauss–Legendre, 5 points, of |ρ_1| over ξ ∈ [−1, 1]
-        const X: [f64; 5] = [0.0, -0.538_469_310_105_683, 0.538_469_310_105_683, -0.906_179_845_938_664, 0.906_179_845_938_664];
+        const X: [f64; 5] = [
+            0.0,
+            -0.538_469_310_105_683,
+            0.538_469_310_105_683,
+            -0.906_179_845_938_664,
+            0.906_179_845_938_664,
+        ];
         const W: [f64; 5] = [
             0.568_888_888_888_889,
             0.478_628_670_499_366,
@@ -174,7 +189,12 @@ mod tests {
     #[test]
     fn neighbouring_segments_share_the_tangent_direction_at_their_node() {
         let (x0, x1, x2, x3, x4) = ([-1.0, 0.3], [0.0, 0.0], [1.0, 0.1], [1.6, 0.5], [2.0, 1.2]);
-        let a = HermiteSegment { x0: Some(x0), x1, x2, x3: Some(x3) };
+        let a = HermiteSegment {
+            x0: Some(x0),
+            x1,
+            x2,
+            x3: Some(x3),
+        };
         let b = HermiteSegment {
             x0: Some(x1),
             x1: x2,
