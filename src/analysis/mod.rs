@@ -3,6 +3,7 @@
 pub mod analytic;
 pub mod chunks;
 pub mod diff;
+pub mod elastica;
 pub mod export;
 pub mod inspect;
 pub mod metrics;

@@ -527,6 +527,45 @@ impl Assembler {
         }
     }
 
+    /// Hold the hourglass modes of the `q4-eas-safe` elements for the next increment, from
+    /// the converged displacements `u` (see [`crate::element::quad::hourglass_holds`]).
+    pub fn update_hourglass_holds(&mut self, model: &Model, u: &[f64]) {
+        for (el, geo) in model.elements.iter().zip(self.geometry.iter_mut()) {
+            let body = &model.bodies[el.body];
+            let Ok(geo) = geo else { continue };
+            if body.kind != crate::element::quad::ElementKind::Q4EasSafe {
+                continue;
+            }
+            let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
+            let holds = crate::element::quad::hourglass_holds(geo, &body.material, &ue);
+            geo.set_alpha_penalty(holds, &body.material);
+        }
+    }
+
+    /// The tangent of element `ie` at displacements `u` (row-major 8×8), from the enhanced
+    /// parameters `alpha` (a copy is iterated on; the state is not changed).
+    pub fn element_tangent(
+        &self,
+        model: &Model,
+        ie: usize,
+        u: &[f64],
+        alpha: &[f64; 4],
+        k: &mut [f64; 64],
+    ) -> Result<(), AssemblyError> {
+        let (mut a, mut r) = (*alpha, [0.0; 8]);
+        element_kernel(
+            model,
+            &model.elements[ie],
+            &self.geometry[ie],
+            u,
+            &mut a,
+            &mut r,
+            Some(k),
+        )
+        .map(|_| ())
+        .map_err(|source| AssemblyError { element: ie, source })
+    }
+
     /// Residual restricted to the free equations.
     pub fn free_residual(&self, out: &mut [f64]) {
         for (d, e) in self.dofs.eq.iter().enumerate() {

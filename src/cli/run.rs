@@ -188,6 +188,16 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
             row(&mut o, "linear solver", line);
         }
+        if let Some(u) = &s.unstable_elements {
+            row(
+                &mut o,
+                "WARNING",
+                format!(
+                    "elements lost stability from increment {} on (up to {} at once; worst: element {}, λ_min/λ_max = {:.1e}): an hourglass pattern, the answer may be wrong; see `/log`",
+                    u.first_increment, u.most, u.worst_element, u.worst_ratio
+                ),
+            );
+        }
     }
     for p in &a.out {
         row(&mut o, "written", p.display().to_string());

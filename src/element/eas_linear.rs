@@ -8,7 +8,8 @@
 //!
 //! is linear in `α` with the constant matrix `K_αα = Σ_q dv_q G_qᵀ D G_q`, so
 //!
-//! `α(u) = Σ_q P_q E_c,q`, `P_q = −K_αα⁻¹ dv_q (D G_q)ᵀ` (4×3 per Gauss point).
+//! `α(u) = Σ_q P_q E_c,q`, `P_q = −K_αα⁻¹ dv_q (D G_q)ᵀ` (4×3 per Gauss point), with the
+//! penalty of held hourglass modes (if any) on `K_αα`'s diagonal.
 //!
 //! `P_q` and `K_αα⁻¹` depend on the reference geometry and the material only: they are
 //! computed once per element, and the kernel evaluates `α` from the compatible strains
@@ -34,7 +35,7 @@ pub(crate) struct LinearEas {
 impl LinearEas {
     /// `None` unless the material's tangent is constant and `K_αα` is invertible.
     /// `gauss`: `(dv_q, G_q)` at the four Gauss points.
-    pub fn new(material: &Material, gauss: &[(f64, [[f64; 4]; 3]); 4]) -> Option<Self> {
+    pub fn new(material: &Material, gauss: &[(f64, [[f64; 4]; 3]); 4], penalty: &[f64; 4]) -> Option<Self> {
         let d = material.constant_tangent()?;
         let mut dg = [[[0.0; 4]; 3]; 4];
         let mut kaa = Matrix4::zeros();
@@ -49,6 +50,9 @@ impl LinearEas {
                     kaa[(m, n)] += g[0][m] * dgq[0][n] + g[1][m] * dgq[1][n] + g[2][m] * dgq[2][n];
                 }
             }
+        }
+        for (m, p) in penalty.iter().enumerate() {
+            kaa[(m, m)] += p;
         }
         let kaa_inv: Matrix4<f64> = kaa.try_inverse()?;
         if !kaa_inv.iter().all(|v| v.is_finite()) {

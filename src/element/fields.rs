@@ -32,7 +32,10 @@ pub fn centre_fields(
     u: &[[f64; 2]; 4],
 ) -> Result<CentreFields, ElementError> {
     let mut alpha = [0.0; 4];
-    if matches!(kind, ElementKind::Q4Eas | ElementKind::Q4EasStab) {
+    if matches!(
+        kind,
+        ElementKind::Q4Eas | ElementKind::Q4EasStab | ElementKind::Q4EasSafe
+    ) {
         // the enhanced parameters of this u (the kernel is a function of u alone)
         let mut r = [0.0; 8];
         quad_residual_tangent(kind, material, x, u, &mut alpha, &mut r, None)?;

@@ -43,6 +43,12 @@ pub enum ElementKind {
     /// `Q4Eas` stabilised against its hourglass instability in compression by a small
     /// share of the displacement-based energy (see [`EAS_STABILISATION`]).
     Q4EasStab,
+    /// `Q4Eas` made safe against its hourglass instabilities (the default): the enhanced
+    /// shear mode that frees an element's hourglass pattern across its short side is held
+    /// once the element has been compressed across that side (see [`hourglass_holds`]), and
+    /// the element turns into the bilinear one when compressed as a whole beyond ≈ 15 %
+    /// (`quad_stab.rs`, `compression_share`). Plain EAS in bending and at moderate strain.
+    Q4EasSafe,
 }
 
 /// Failure of an element evaluation; the solver treats it as a divergent iteration.
@@ -100,6 +106,13 @@ struct GaussGeom {
 #[derive(Debug, Clone, Copy)]
 pub struct QuadGeometry {
     gp: [GaussGeom; 4],
+    /// The columns of the centre Jacobian, `∂X/∂ξ` and `∂X/∂η` (the element's two natural
+    /// axes, half their side lengths long).
+    axes: [[f64; 2]; 2],
+    /// Penalty `p_m` on each enhanced parameter, `Π += ½ Σ p_m α_m²` (zero but where the
+    /// hourglass modes of a [`ElementKind::Q4EasSafe`] element are held: `quad_stab.rs`,
+    /// `hourglass_holds`).
+    penalty: [f64; 4],
     /// Closed-form `α(u)` for one material with a constant tangent (see
     /// [`QuadGeometry::for_material`]).
     linear: Option<LinearEas>,
@@ -157,6 +170,8 @@ impl QuadGeometry {
         };
         Ok(QuadGeometry {
             gp: [mk(&GAUSS[0])?, mk(&GAUSS[1])?, mk(&GAUSS[2])?, mk(&GAUSS[3])?],
+            axes: [[j0[(0, 0)], j0[(1, 0)]], [j0[(0, 1)], j0[(1, 1)]]],
+            penalty: [0.0; 4],
             linear: None,
         })
     }
@@ -168,7 +183,7 @@ impl QuadGeometry {
     pub fn for_material(kind: ElementKind, material: &Material, x: &[[f64; 2]; 4]) -> Result<Self, ElementError> {
         let mut geo = Self::new(kind, x)?;
         if kind != ElementKind::Q4 {
-            geo.linear = LinearEas::new(material, &geo.gp.map(|q| (q.dv, q.g)));
+            geo.linear = LinearEas::new(material, &geo.gp.map(|q| (q.dv, q.g)), &geo.penalty);
         }
         Ok(geo)
     }
@@ -360,6 +375,18 @@ fn gauss_pass(
             }
         }
     }
+    if eas {
+        // the hold ½ Σ p_m α_m² of the hourglass modes (zero but in held elements)
+        for (m, &pm) in geo.penalty.iter().enumerate().filter(|(_, p)| **p != 0.0) {
+            t.ra[m] += pm * al[m];
+            if kaa {
+                t.kaa[m][m] += pm;
+            }
+            if full {
+                t.energy += 0.5 * pm * al[m] * al[m];
+            }
+        }
+    }
     Ok(t)
 }
 
@@ -436,6 +463,9 @@ pub fn quad_residual_tangent_with(
 ) -> Result<f64, ElementError> {
     if kind == ElementKind::Q4EasStab {
         return stabilised(material, geo, u, alpha, r, k);
+    }
+    if kind == ElementKind::Q4EasSafe {
+        return stab::compression_blend(material, geo, u, alpha, r, k);
     }
     let kin = [
         kinematics(&geo.gp[0], u),
@@ -535,7 +565,7 @@ pub fn quad_residual_tangent_with(
 #[path = "quad_stab.rs"]
 mod stab;
 use stab::stabilised;
-pub use stab::EAS_STABILISATION;
+pub use stab::{hourglass_holds, EAS_STABILISATION};
 
 #[path = "quad_output.rs"]
 mod output;

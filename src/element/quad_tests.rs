@@ -47,7 +47,12 @@ const U_LARGE: [[f64; 2]; 4] = [[0.0, 0.0], [0.12, 0.05], [0.02, 0.21], [-0.08, 
 #[test]
 fn tangent_matches_finite_differences_for_every_kind_and_material() {
     for m in materials() {
-        for kind in [ElementKind::Q4, ElementKind::Q4Eas, ElementKind::Q4EasStab] {
+        for kind in [
+            ElementKind::Q4,
+            ElementKind::Q4Eas,
+            ElementKind::Q4EasStab,
+            ElementKind::Q4EasSafe,
+        ] {
             fd_check(kind, &m, U_LARGE);
             fd_check(kind, &m, [[0.0; 2]; 4]);
         }
@@ -103,7 +108,7 @@ proptest! {
             u[i] = [c * x - s * y + tx - x, s * x + c * y + ty - y];
         }
         for m in materials() {
-            for kind in [ElementKind::Q4, ElementKind::Q4Eas, ElementKind::Q4EasStab] {
+            for kind in [ElementKind::Q4, ElementKind::Q4Eas, ElementKind::Q4EasStab, ElementKind::Q4EasSafe] {
                 let mut a = [3e-3, -2e-3, 1e-3, 5e-4];
                 let mut r = [0.0; 8];
                 quad_residual_tangent(kind, &m, &X, &u, &mut a, &mut r, None).unwrap();
@@ -143,10 +148,12 @@ fn closed_form_alpha_agrees_with_the_local_newton_path() {
     // St. Venant–Kirchhoff: the geometry made for the material takes α(u) in closed form;
     // the plain geometry (and any other material) iterates on R_α. Same element to round-off.
     let m = materials()[0];
-    for kind in [ElementKind::Q4Eas, ElementKind::Q4EasStab] {
-        let plain = QuadGeometry::new(kind, &X).unwrap();
+    for kind in [ElementKind::Q4Eas, ElementKind::Q4EasStab, ElementKind::Q4EasSafe] {
         let fitted = QuadGeometry::for_material(kind, &m, &X).unwrap();
-        assert!(plain.linear.is_none() && fitted.linear.is_some());
+        // the same geometry (shear-mode penalty included) without the closed form
+        let mut plain = fitted;
+        plain.linear = None;
+        assert!(fitted.linear.is_some());
         for u in [
             U_LARGE,
             [[0.0; 2]; 4],
@@ -176,4 +183,84 @@ fn closed_form_alpha_agrees_with_the_local_newton_path() {
     quad_residual_tangent_with(ElementKind::Q4Eas, &other, &fitted, &U_LARGE, &mut a1, &mut r1, None).unwrap();
     quad_residual_tangent_with(ElementKind::Q4Eas, &other, &plain, &U_LARGE, &mut a2, &mut r2, None).unwrap();
     assert_eq!(r1, r2);
+}
+
+#[test]
+fn the_safe_element_tangent_matches_fd_while_it_turns_bilinear_under_compression() {
+    // compressed by 10 %, 27 % (inside the blend) and 45 % (bilinear) along x, with shear
+    for squeeze in [0.10, 0.27, 0.45] {
+        let u: [[f64; 2]; 4] = std::array::from_fn(|i| [-squeeze * X[i][0] + 0.03 * X[i][1], 0.02 * X[i][0]]);
+        for m in materials() {
+            fd_check(ElementKind::Q4EasSafe, &m, u);
+        }
+    }
+}
+
+#[test]
+fn held_hourglass_modes_keep_the_tangent_exact_and_the_closed_form_alpha() {
+    // a tall element compressed across its short side: its η shear mode is held
+    let tall = [[0.0, 0.0], [0.1, 0.0], [0.1, 1.2], [0.0, 1.2]];
+    let hg = [1.0, -1.0, 1.0, -1.0];
+    let u: [[f64; 2]; 4] = std::array::from_fn(|i| [-0.01 * tall[i][0], 1e-4 * hg[i]]);
+    for m in materials() {
+        let mut geo = QuadGeometry::for_material(ElementKind::Q4EasSafe, &m, &tall).unwrap();
+        let holds = hourglass_holds(&geo, &m, &u);
+        assert!(
+            holds[3] > 10.0 * geo.mode_stiffness(&m, 3) && holds[2] == 0.0,
+            "{holds:?}"
+        );
+        geo.set_alpha_penalty(holds, &m);
+        let eval_at = |geo: &QuadGeometry, u: &[[f64; 2]; 4]| {
+            let (mut a, mut r, mut k) = ([0.0; 4], [0.0; 8], [0.0; 64]);
+            let e =
+                quad_residual_tangent_with(ElementKind::Q4EasSafe, &m, geo, u, &mut a, &mut r, Some(&mut k)).unwrap();
+            (e, r, k)
+        };
+        let (_, _, k) = eval_at(&geo, &u);
+        let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let h = 1e-8;
+        for j in 0..8 {
+            let (mut up, mut um) = (u, u);
+            up[j / 2][j % 2] += h;
+            um[j / 2][j % 2] -= h;
+            let ((_, rp, _), (_, rm, _)) = (eval_at(&geo, &up), eval_at(&geo, &um));
+            for i in 0..8 {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                assert!(
+                    (fd - k[8 * i + j]).abs() < 1e-6 * kmax,
+                    "K[{i},{j}] = {} vs FD {fd}",
+                    k[8 * i + j]
+                );
+            }
+        }
+        // the same element without the closed form of α (the local Newton iteration)
+        let mut plain = geo;
+        plain.linear = None;
+        let ((e1, r1, _), (e2, r2, _)) = (eval_at(&geo, &u), eval_at(&plain, &u));
+        assert!((e1 - e2).abs() <= 1e-10 * e1.abs().max(1e-12));
+        assert!(r1.iter().zip(&r2).all(|(a, b)| (a - b).abs() <= 1e-9 * (1.0 + a.abs())));
+    }
+}
+
+#[test]
+fn the_safe_element_is_plain_eas_at_moderate_strain_and_bilinear_under_large_compression() {
+    let m = materials()[0];
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let hg = [1.0, -1.0, 1.0, -1.0];
+    let resid = |kind, u: &[[f64; 2]; 4]| {
+        let (mut a, mut r) = ([0.0; 4], [0.0; 8]);
+        quad_residual_tangent(kind, &m, &square, u, &mut a, &mut r, None).unwrap();
+        r
+    };
+    let close = |a: [f64; 8], b: [f64; 8]| a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-12 * (1.0 + x.abs()));
+    let mild: [[f64; 2]; 4] = std::array::from_fn(|i| [-0.1 * square[i][0], 1e-3 * hg[i]]);
+    assert!(close(
+        resid(ElementKind::Q4Eas, &mild),
+        resid(ElementKind::Q4EasSafe, &mild)
+    ));
+    let hard: [[f64; 2]; 4] = std::array::from_fn(|i| [-0.45 * square[i][0], 1e-3 * hg[i]]);
+    assert!(close(
+        resid(ElementKind::Q4, &hard),
+        resid(ElementKind::Q4EasSafe, &hard)
+    ));
 }

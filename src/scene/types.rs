@@ -75,7 +75,7 @@ pub struct BodySpec {
 }
 
 fn default_element() -> ElementKind {
-    ElementKind::Q4Eas
+    ElementKind::Q4EasSafe
 }
 
 /// Mesh generators.

@@ -98,6 +98,64 @@ pub struct RunSummary {
     pub iterative: crate::assembly::iterative::IterativeStats,
     /// Counts of the symmetric (`LDLᵀ`) factorisations (all zero when none was made).
     pub ldlt: crate::assembly::ldlt::LdltStats,
+    /// Elements that lost stability at some converged increment (see
+    /// [`super::element_check`]): the first such increment, the most at one increment and
+    /// the worst element seen.
+    pub unstable_elements: Option<UnstableSummary>,
+}
+
+/// Where and how many elements lost stability in a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnstableSummary {
+    pub first_increment: usize,
+    pub most: usize,
+    pub worst_element: usize,
+    pub worst_ratio: f64,
+}
+
+/// Check the elements at a converged increment; log a warning when the unstable set changes
+/// in size (the first time too), and keep the run's account.
+fn check_elements(
+    model: &Model,
+    asm: &Assembler,
+    state: &TrialState,
+    (increment, t): (usize, f64),
+    last_count: &mut usize,
+    summary: &mut RunSummary,
+    obs: &mut dyn Observer,
+) -> Result<(), ObserverError> {
+    let Ok(unstable) = super::element_check::unstable_elements(model, asm, &state.u, &state.alphas) else {
+        return Ok(());
+    };
+    if unstable.len() != *last_count && !unstable.is_empty() {
+        let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
+        log(
+            obs,
+            LogLevel::Warning,
+            increment,
+            t,
+            format!(
+                "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; the element kind `q4-eas-safe` (the default) does not hourglass",
+                unstable.len(),
+                names.join(", "),
+                if unstable.len() > 5 { ", …" } else { "" }
+            ),
+        )?;
+    }
+    *last_count = unstable.len();
+    if let Some(worst) = unstable.first() {
+        let s = summary.unstable_elements.get_or_insert(UnstableSummary {
+            first_increment: increment,
+            most: 0,
+            worst_element: worst.element,
+            worst_ratio: worst.ratio,
+        });
+        s.most = s.most.max(unstable.len());
+        if worst.ratio < s.worst_ratio {
+            (s.worst_element, s.worst_ratio) = (worst.element, worst.ratio);
+        }
+    }
+    Ok(())
 }
 
 fn log(
@@ -212,6 +270,7 @@ fn drive(
     let mut last_du = vec![0.0; model.dof_count()];
     let mut last_dt: Option<f64> = None;
     let mut recording = std::time::Duration::ZERO;
+    let mut unstable_count = 0;
     while t < st.end * (1.0 - 1e-12) {
         increment += 1;
         let t_inc = Instant::now();
@@ -377,6 +436,16 @@ fn drive(
             },
         )?;
         recording += handed.elapsed().saturating_sub(commit_time);
+        check_elements(
+            model,
+            &asm,
+            &committed,
+            (increment, t),
+            &mut unstable_count,
+            &mut summary,
+            obs,
+        )?;
+        asm.update_hourglass_holds(model, &committed.u);
         summary.increments = increment;
         streak += 1;
         if streak >= st.grow_after && dt < nominal {

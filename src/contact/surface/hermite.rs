@@ -131,7 +131,7 @@ impl<S: Scalar> MasterSegment<S> for HermiteSegment<S> {
         for _ in 0..2 {
             let (rho, r1, r11) = self.eval2(x);
             let d = sub(rs, rho);
-            x = x - dot(d, r1) / (dot(d, r11) - dot(r1, r1));
+            x -= dot(d, r1) / (dot(d, r11) - dot(r1, r1));
         }
         x
     }
