@@ -138,7 +138,7 @@ impl PointProblem {
         let zero = S::from(0.0);
         let open = match self.forced {
             Some(state) => state == ContactState::Open,
-            None => !touching(proj.gap.re(), proj.a11.re()),
+            None => !penetrating(proj.gap.re(), proj.a11.re()),
         };
         if open {
             return PointEval {
@@ -194,7 +194,12 @@ impl PointProblem {
             let penetration = -proj.gap;
             t1_trial *= penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
         }
-        let (t1, state) = if self.stick_held && self.law.mu > 0.0 {
+        let (t1, state) = if self.law.mu > 0.0 && normal_force.re() <= 0.0 {
+            // touching without pressure (see [`touching`]): no friction to transmit, and no
+            // friction stiffness either (the slip branch's `μ ∂N` would couple the normal
+            // and tangential motion of a point that carries nothing)
+            (zero, ContactState::Slip)
+        } else if self.stick_held && self.law.mu > 0.0 {
             (t1_trial, ContactState::Stick)
         } else {
             return_map(&self.law, t1_trial, normal_force, proj.a11)
@@ -285,17 +290,23 @@ impl PointProblem {
     }
 }
 
-/// Relative size of the gap, against the segment's length `2√a11`, below which a point counts
-/// as touching: the round-off of a projection (coordinates of order one carry about 1e-16).
+/// Relative size of the gap, against the segment's length `2√a11`, within which a point is
+/// *touching*: the round-off of a projection (coordinates of order one carry about 1e-16).
 pub const TOUCH_TOLERANCE: f64 = 1e-12;
 
-/// Whether a point with gap `ζ` on a segment of metric `a11` is closed: penetrating, or
-/// touching to round-off. A point lying exactly on the master (a zero-gap start: two bodies
-/// meshed against each other, a sheet resting on a rigid facet) is closed with zero normal
-/// force and the penalty's stiffness, so that the first correction of Newton sees the contact
-/// instead of moving the body through the master and back.
+/// Whether a point with gap `ζ` on a segment of metric `a11` penetrates the master beyond
+/// round-off (`ζ < −10⁻¹² · 2√a11`): the point is closed. A point that merely touches is
+/// open — it carries no force either way; whether the first correction of an increment
+/// should see it closed is decided by the solver from the motion (see
+/// `solver::active_set::touching_pushed_in`).
+pub fn penetrating(gap: f64, a11: f64) -> bool {
+    gap < -TOUCH_TOLERANCE * 2.0 * a11.sqrt()
+}
+
+/// Whether a point with gap `ζ` touches the master to round-off, `|ζ| ≤ 10⁻¹² · 2√a11` (a
+/// zero-gap start: two bodies meshed against each other, a sheet resting on a rigid facet).
 pub fn touching(gap: f64, a11: f64) -> bool {
-    gap <= TOUCH_TOLERANCE * 2.0 * a11.sqrt()
+    gap.abs() <= TOUCH_TOLERANCE * 2.0 * a11.sqrt()
 }
 
 fn dot_self<S: Scalar>(a: V2<S>) -> S {

@@ -170,7 +170,9 @@ impl ActiveSetWatch {
 ///    the strip free to swing about its last support: on the 120×4 strip-channel the first
 ///    correction was ≈ 8 units long, the slope line search cut it to `s = 0.001` (8
 ///    assemblies) and the next residual was 1e3 — in 302 of 1 200 increments.
-/// 2. **Stick as the elastic predictor** of friction: frictional points closed at the last
+/// 2. **Touching points pushed in** (`pushed_in`, see [`touching_points`]): points at zero
+///    gap that a first correction with them open moves into the master are held closed.
+/// 3. **Stick as the elastic predictor** of friction: frictional points closed at the last
 ///    converged increment and closed (or held closed) now are held in stick, returning their
 ///    trial traction with the stick tangent — those that stuck at the last converged
 ///    increment, and in an attempt that `retry`s an increment after a failed one, the
@@ -191,9 +193,11 @@ pub fn hold_first_correction(
     contact: &mut ContactSystem,
     model: &Model,
     (predicted, retry): (bool, bool),
+    pushed_in: &[usize],
     held: &mut Vec<usize>,
 ) -> usize {
     held.clear();
+    held.extend_from_slice(pushed_in);
     let mut stick = Vec::new();
     let mut flat = 0;
     for (ip, pair) in model.contacts.iter().enumerate() {
@@ -204,7 +208,7 @@ pub fn hold_first_correction(
             if lift_off {
                 held.push(flat);
             }
-            let closed = lift_off || state.is_some_and(|s| s != ContactState::Open);
+            let closed = lift_off || pushed_in.contains(&flat) || state.is_some_and(|s| s != ContactState::Open);
             if pair.law.mu > 0.0 && was.closed && closed && (was.stuck || retry) {
                 stick.push(flat);
             }
@@ -226,4 +230,28 @@ pub fn hold_first_correction(
     held.sort_unstable();
     held.dedup();
     held.len()
+}
+
+/// The points that touch their master to round-off and are open at the current iterate
+/// (flat indices; [`crate::contact::point::touching`]): a zero-gap start. Whether the first
+/// correction sees them closed depends on where the motion takes them: two blocks meshed
+/// against each other and pressed together must see the contact at once (open, the first
+/// correction moves the top block through the base and Newton thrashes), a sheet lying on a
+/// facet and pulled along it must not (held closed with the penalty's stiffness, it can only
+/// lift off one point per iteration: the clamp's force couple at the edge of the held set).
+/// The solver probes: a correction with them open, and those it pushes in are held closed
+/// for the real first correction (`solver::newton`, `touching_pushed_in`).
+pub fn touching_points(contact: &ContactSystem) -> Vec<usize> {
+    contact
+        .current
+        .iter()
+        .flatten()
+        .enumerate()
+        .filter(|(_, p)| {
+            p.eval.is_some_and(|e| {
+                e.state == ContactState::Open && crate::contact::point::touching(e.proj.gap, e.proj.a11)
+            })
+        })
+        .map(|(flat, _)| flat)
+        .collect()
 }

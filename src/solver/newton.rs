@@ -1,7 +1,7 @@
 //! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
 //! optional backtracking line search.
 
-use super::active_set::{hold_first_correction, ActiveSetWatch};
+use super::active_set::{hold_first_correction, touching_points, ActiveSetWatch};
 use super::state::TrialState;
 use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
@@ -126,7 +126,8 @@ pub fn solve_increment(
         }
         if !started {
             let retry = attempt > 0 && !predicted;
-            if hold_first_correction(&mut state.contact, model, (predicted, retry), &mut ws.held) > 0 {
+            let pushed_in = touching_pushed_in(model, asm, state, t, ws)?;
+            if hold_first_correction(&mut state.contact, model, (predicted, retry), &pushed_in, &mut ws.held) > 0 {
                 asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
             }
             ws.watch.start(&state.contact);
@@ -272,6 +273,39 @@ pub fn solve_increment(
         return Err(NewtonFailure::ActiveSetCycle { iterations, points });
     }
     Err(NewtonFailure::MaxIterations { iterations })
+}
+
+/// The touching points (see [`touching_points`]) that a first correction with them open
+/// pushes into their master: one linear solve and one residual assembly at the trial, then
+/// the first iterate is assembled again (nothing is done when no point touches).
+fn touching_pushed_in(
+    model: &Model,
+    asm: &mut Assembler,
+    state: &mut TrialState,
+    t: f64,
+    ws: &mut Workspace,
+) -> Result<Vec<usize>, NewtonFailure> {
+    let touching = touching_points(&state.contact);
+    if touching.is_empty() {
+        return Ok(touching);
+    }
+    asm.free_residual(&mut ws.r);
+    for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
+        *d = -ri;
+    }
+    asm.matrix.solve(&mut ws.du)?;
+    apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
+    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+    let closed = |flat: &usize| {
+        let (ip, is) = state.contact.point_index(*flat);
+        state.contact.current[ip][is]
+            .eval
+            .is_some_and(|e| e.state != crate::contact::law::ContactState::Open)
+    };
+    let pushed: Vec<usize> = touching.into_iter().filter(closed).collect();
+    apply(&mut state.u, &asm.dofs.eq, &ws.du, -1.0);
+    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+    Ok(pushed)
 }
 
 /// Backtracking on `‖R‖` (`state.u` is at `u + Δu` on entry and at `u + sΔu` on return).
