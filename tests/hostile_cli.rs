@@ -110,13 +110,24 @@ fn wait(child: &mut std::process::Child, secs: u64) -> std::process::ExitStatus 
 #[cfg(unix)]
 #[test]
 fn a_signal_in_the_first_milliseconds_exits_130() {
+    use std::os::unix::process::CommandExt;
     for delay_ms in [0, 2, 5, 10, 30] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_contrail"))
+        let mut command = Command::new(env!("CARGO_BIN_EXE_contrail"));
+        command
             .args(["run", "block-slide", "--quiet", "--set", "stepping.increments=1000000"])
             .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
+            .stderr(Stdio::null());
+        // SIGINT at its default action until contrail installs its handler: a test run
+        // started in the background of a non-interactive shell inherits it ignored, and a
+        // signal before `main` would then be lost
+        // SAFETY: `signal` is async-signal-safe; nothing else runs between fork and exec.
+        unsafe {
+            command.pre_exec(|| {
+                libc::signal(libc::SIGINT, libc::SIG_DFL);
+                Ok(())
+            });
+        }
+        let mut child = command.spawn().unwrap();
         std::thread::sleep(Duration::from_millis(delay_ms));
         signal(child.id(), "-INT");
         let status = wait(&mut child, 60);

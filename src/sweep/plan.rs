@@ -99,6 +99,36 @@ pub enum Reference {
         #[serde(default)]
         mu: Option<f64>,
     },
+    /// A known value of the first monitor: its `quantity` (`"force"` or `"displacement"`)
+    /// times `scale`, averaged over the increments with `t ∈ [from, to]` (default: the last
+    /// increment alone), against `value` (Euler–Eytelwein's `T2/T1` over a plateau of the
+    /// capstan, the elastica's tip deflection over `L`, a patch test's force).
+    Value {
+        value: f64,
+        #[serde(default = "quantity_force")]
+        quantity: MonitorQuantity,
+        #[serde(default = "unit")]
+        scale: f64,
+        #[serde(default)]
+        from: Option<f64>,
+        #[serde(default)]
+        to: Option<f64>,
+    },
+}
+
+/// Which column of a monitor a [`Reference::Value`] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MonitorQuantity {
+    Force,
+    Displacement,
+}
+
+fn quantity_force() -> MonitorQuantity {
+    MonitorQuantity::Force
+}
+fn unit() -> f64 {
+    1.0
 }
 
 fn col_x() -> String {

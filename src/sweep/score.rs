@@ -3,7 +3,7 @@
 //! fail a check (lost contact, wrong answer).
 
 use super::index::{IndexRow, Metrics, RunRecord};
-use super::plan::{Checks, Plan, Reference, StudyPlan};
+use super::plan::{Checks, MonitorQuantity, Plan, Reference, StudyPlan};
 use super::SweepError;
 use crate::analysis::{analytic, metrics};
 use crate::study::{FailureKind, Status};
@@ -90,8 +90,40 @@ fn analytic_metrics(s: &StudyPlan, rec: &RunRecord, m: &mut Metrics) {
                 m.analytic_detail = format!("|Rx/Ry|/mu - 1 = {e:+.3e}");
             }
         }
+        Reference::Value {
+            value,
+            quantity,
+            scale,
+            from,
+            to,
+        } => {
+            if let Some(mean) = monitor_mean(&rec.outcome.data.curve, *quantity, (*from, *to)) {
+                let e = mean * scale / value - 1.0;
+                m.analytic_err = finite(Some(e.abs()));
+                m.analytic_detail = format!("{:.6} vs {value} ({e:+.3e})", mean * scale);
+            }
+        }
         _ => {}
     }
+}
+
+/// Mean of a monitor column over the curve points with `t ∈ [from, to]` (the last point when
+/// neither is given); `None` when no point is in the window.
+fn monitor_mean(curve: &[[f64; 3]], quantity: MonitorQuantity, (from, to): (Option<f64>, Option<f64>)) -> Option<f64> {
+    let column = match quantity {
+        MonitorQuantity::Displacement => 1,
+        MonitorQuantity::Force => 2,
+    };
+    if from.is_none() && to.is_none() {
+        return curve.last().map(|p| p[column]);
+    }
+    let (lo, hi) = (from.unwrap_or(f64::NEG_INFINITY), to.unwrap_or(f64::INFINITY));
+    let picked: Vec<f64> = curve
+        .iter()
+        .filter(|p| p[0] >= lo - 1e-9 && p[0] <= hi + 1e-9)
+        .map(|p| p[column])
+        .collect();
+    (!picked.is_empty()).then(|| picked.iter().sum::<f64>() / picked.len() as f64)
 }
 
 fn measure(s: &StudyPlan, rec: &RunRecord, reference: Option<&Curve>) -> Metrics {
@@ -231,6 +263,7 @@ pub fn score(
             Reference::Csv { path, x, y } => (Some(read_csv_curve(path, x, y)?), format!("csv:{path}")),
             Reference::Hertz { .. } => (None, "hertz".into()),
             Reference::Coulomb { .. } => (None, "coulomb".into()),
+            Reference::Value { value, .. } => (None, format!("value:{value}")),
         };
         for rec in recs {
             let mut m = measure(s, rec, reference.as_ref().filter(|c| !c.is_empty()));
@@ -255,6 +288,20 @@ pub fn score(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_value_reference_averages_the_monitor_over_its_window() {
+        let curve = [[0.5, 0.1, 1.0], [1.0, 0.2, 2.0], [1.5, 0.3, 4.0], [2.0, 0.4, 8.0]];
+        let f = MonitorQuantity::Force;
+        assert_eq!(super::monitor_mean(&curve, f, (None, None)), Some(8.0));
+        assert_eq!(super::monitor_mean(&curve, f, (Some(1.0), Some(1.5))), Some(3.0));
+        assert_eq!(
+            super::monitor_mean(&curve, MonitorQuantity::Displacement, (Some(2.0), None)),
+            Some(0.4)
+        );
+        assert_eq!(super::monitor_mean(&curve, f, (Some(3.0), None)), None);
+    }
+
     use super::*;
     use crate::study::{ContactLoss, CrossingJump, Figures, RunData, StudyOutcome};
     use std::path::Path;
