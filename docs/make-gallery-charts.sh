@@ -12,7 +12,7 @@ out=sweeps-out/gallery
 index="$out/index.json"
 "${bin[@]}" chart stability "$index" --study contact-patch --x contact.eps_n --y stepping.increments -o docs/gallery-patch-stability
 "${bin[@]}" chart stability "$index" --study ironing --x stepping.increments --y body.block.mesh.elements -o docs/gallery-ironing-stability
-"${bin[@]}" chart pareto "$index" --study ironing --metric err_max_rel -o docs/gallery-ironing-pareto
+"${bin[@]}" chart pareto "$index" --study ironing --metric plateau_err -o docs/gallery-ironing-pareto
 "${bin[@]}" chart stability "$index" --study capstan --x stepping.increments --y body.belt.mesh.elements -o docs/gallery-capstan-stability
 "${bin[@]}" chart pareto "$index" --study capstan --metric analytic_err -o docs/gallery-capstan-pareto
 "${bin[@]}" chart stability "$index" --study capstan-polygon --x stepping.increments --y body.belt.mesh.elements -o docs/gallery-capstan-polygon-stability
