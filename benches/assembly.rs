@@ -1,7 +1,7 @@
 //! Element assembly and one Newton iteration against the number of DOFs, on a refined
 //! cantilever strip (10 × 0.5, EAS quads), from ~1e2 to ~1e5 DOFs.
 //!
-//! Run: `cargo bench --bench assembly` (figures in the README and the issue note).
+//! Run: `cargo bench --bench assembly` (figures in docs/performance.md).
 
 use contrail::assembly::Assembler;
 use contrail::solver::state::TrialState;

@@ -6,7 +6,7 @@
 //!   node on a face segment that it reached from the neighbouring segment (4 node slots,
 //!   8 DOFs), in stick and in slip, for each history-transfer scheme.
 //!
-//! Run: `cargo bench --bench kernels` (figures in the README's performance section).
+//! Run: `cargo bench --bench kernels` (figures in docs/performance.md).
 
 use contrail::contact::point::{Closed, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use contrail::contact::transfer::StoredTraction;

@@ -16,7 +16,7 @@
 //! of a guided cantilever of length l = 6.5 loaded at its tip, `3 E' I / l³`,
 //! `E' = E/(1 − ν²)`, `I = h³/12` (= 2.6258), within 1 %.
 //!
-//! CI runs 24×1 and 48×2 for every μ; the finer meshes and the printed table (the README's
+//! CI runs 24×1 and 48×2 for every μ; the finer meshes and the printed table (docs/verification.md's
 //! mesh-convergence table) come from
 //! `cargo test --release --test strip_channel_meshes -- --ignored --nocapture`.
 
@@ -25,7 +25,7 @@ mod common;
 use contrail::record::{Memory, Outcome};
 use std::time::Instant;
 
-/// What the README's table reports for one run.
+/// What docs/verification.md's table reports for one run.
 #[derive(Debug, Clone)]
 struct Row {
     mesh: [usize; 2],

@@ -150,7 +150,7 @@ pub const PARALLEL_ELEMENTS_FROM: usize = 2_000;
 /// Models with at least this many elements (and fewer than [`PARALLEL_ELEMENTS_FROM`])
 /// evaluate half their element kernels on a spinning helper thread (see [`helper`]), when
 /// [`helper::allowed`]. Measured on the 120×4 strip-channel (480 elements; 2 cores): see
-/// the README's performance table.
+/// docs/performance.md's table.
 pub const HELPER_ELEMENTS_FROM: usize = 256;
 
 /// Elements per parallel block (the per-element buffers of one block: 4096 × 584 bytes).
