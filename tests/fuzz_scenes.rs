@@ -1,15 +1,19 @@
-//! Fuzzing the scene parser and model builder (issue 10): the built-in scenes are mutated
+//! Fuzzing the scene parser, model builder and solver: the built-in scenes are mutated
 //! (numbers replaced by hostile values, tokens inserted, ranges deleted or duplicated, bytes
 //! changed, `--set` overrides with hostile paths and values); loading must end in a model or
 //! a `SceneError` with a message — never a panic — and a model that builds must have only
-//! finite coordinates and pass the size limits.
+//! finite coordinates and pass the size limits. A mutant that loads (what `check` accepts)
+//! is also solved for its first increment (at most one cut-back and 5 Newton iterations, up
+//! to 5 000 DOFs): it completes or fails with a `SolveError`, never a panic. Failing cases
+//! are kept in `proptest-regressions/` and replayed first.
 //!
 //! CI runs a bounded number of cases (256 per property); a long run:
 //! `CONTRAIL_FUZZ_CASES=100000 cargo test --release --test fuzz_scenes`.
 
 use contrail::scene::builtin::BUILTINS;
-use contrail::scene::{build_model, parse, SceneSource};
+use contrail::scene::{build, parse, SceneSource};
 use proptest::prelude::*;
+use std::sync::atomic::AtomicBool;
 
 fn cases() -> u32 {
     std::env::var("CONTRAIL_FUZZ_CASES")
@@ -164,12 +168,30 @@ fn load(text: String, sets: &[String]) -> Result<usize, String> {
         text,
     };
     let scene = parse(&src, sets).map_err(|e| e.to_string())?;
-    let m = build_model(&src, &scene).map_err(|e| e.to_string())?;
+    let mut problem = build(&src, &scene).map_err(|e| e.to_string())?;
+    let m = &problem.model;
     for p in &m.nodes {
         assert!(p[0].is_finite() && p[1].is_finite(), "a node at {p:?}");
     }
     assert!(m.dof_count() <= scene.limits.max_dofs);
-    Ok(m.dof_count())
+    let dofs = m.dof_count();
+    if dofs <= 5000 {
+        solve_first_increment(&src, &mut problem);
+    }
+    Ok(dofs)
+}
+
+/// Solve the first increment of a problem that loaded: completion or a `SolveError`, never a
+/// panic (the result itself is not judged: a hostile scene may well fail).
+fn solve_first_increment(src: &SceneSource, problem: &mut contrail::problem::Problem) {
+    let st = &mut problem.settings.stepping;
+    st.end /= st.increments.max(1) as f64;
+    st.increments = 1;
+    st.max_cutbacks = st.max_cutbacks.min(1);
+    problem.settings.newton.max_iterations = problem.settings.newton.max_iterations.min(5);
+    let info = contrail::run_info(src, &[], problem);
+    let mut mem = contrail::record::Memory::default();
+    let _ = contrail::solver::run(problem, &info, &mut mem, &AtomicBool::new(false));
 }
 
 fn set_value() -> impl Strategy<Value = String> {
@@ -191,7 +213,7 @@ fn set_value() -> impl Strategy<Value = String> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: Some(Box::new(proptest::test_runner::FileFailurePersistence::SourceParallel("proptest-regressions"))), ..ProptestConfig::default() })]
 
     #[test]
     fn mutated_scenes_load_or_explain(

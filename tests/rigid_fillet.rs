@@ -15,7 +15,7 @@
 //!
 //! Reference (frictionless): a node in contact touches the top face or the fillet
 //! (`x ≥ 2 − 1e-3`, `|ζ| ≤ 2e-3`, the press `1e-3` plus elastic recovery); a node's contact
-//! normal on the fillet points away from the fillet's centre (to 1e-6); the horizontal
+//! normal on the fillet points away from the fillet's centre (to 1e-3); the horizontal
 //! reaction of the drag is bounded by the geometry of the fillet, `|R_x| ≤ |R_y| + 1e-6 ε_N`
 //! (normal forces on a quarter circle); at the end (block at x ∈ [0.5, 1.5]) nothing touches.
 //! The outline with a gap between two pieces is refused with the piece named.

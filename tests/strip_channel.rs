@@ -17,7 +17,7 @@
 //!   the block's top (x > 6.5 + 1e-3, y < −1e-3), the peak force grows with μ, and the force is
 //!   constant (range < 1e-6 of the peak) over the straight part v ∈ [10, 11];
 //! - straightforward with μ > 0 stops with a non-converged increment while C sits at a
-//!   segment boundary (|ξ| > 0.95) after trial jumps of ≈ ε_T ℓ (within 10 %) at its crossings;
+//!   segment boundary (|ξ| > 0.9) after trial jumps of ≈ ε_T ℓ (within 10 %) at its crossings;
 //!   frictionless, it is identical to the continuous run (no tangential history to transfer);
 //! - Newton's observed order (energy norm, last three iterates) at the crossing increments of
 //!   the continuous μ = 0.2 run is ≥ 1.8 in the median, and so it is over the increments in
