@@ -4,8 +4,8 @@
 //!
 //! Run: `cargo run --release --example amg_probe -- scenes/punch-large.toml 316x15 [--set k=v]…`
 
-use contrail::assembly::sparse::LinearSolver;
 use contrail::assembly::Assembler;
+use contrail::linalg::sparse::LinearSolver;
 use contrail::solver::state::TrialState;
 use std::time::Instant;
 
@@ -33,7 +33,7 @@ fn main() {
     let n = asm.dofs.n_free;
     let b: Vec<f64> = (0..n).map(|i| (0.37 * i as f64).sin()).collect();
     let mut x_lu = b.clone();
-    asm.matrix.set_solver(LinearSolver::Sparse);
+    asm.matrix.set_solver(LinearSolver::SparseLu);
     let t0 = Instant::now();
     asm.matrix.solve(&mut x_lu).unwrap();
     let t_lu = t0.elapsed();

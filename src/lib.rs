@@ -13,6 +13,7 @@ pub mod chart;
 pub mod contact;
 pub mod element;
 pub mod format;
+pub mod linalg;
 pub mod model;
 pub mod problem;
 pub mod record;

@@ -93,6 +93,28 @@ pub struct NewtonSettings {
     pub freeze_after: u32,
     /// When to check the assembled tangent by finite differences (see [`TangentCheckWhen`]).
     pub check_tangent: TangentCheckWhen,
+    /// Which linear solver factorises the tangent (see [`LinearSolver`]).
+    pub linear_solver: LinearSolver,
+}
+
+/// Which linear solver factorises the tangent (`crate::linalg`). They give the same
+/// solution to round-off (the iterative one to its tolerance); the choice is about speed and
+/// memory, and is recorded with the run's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinearSolver {
+    /// Banded LU after reverse Cuthill–McKee when the band is narrow; otherwise faer's sparse
+    /// `LDLᵀ` (AMD ordering) while the matrix is symmetric, faer's sparse LU when it is not.
+    #[default]
+    Auto,
+    /// Always faer's sparse LU (for comparisons).
+    SparseLu,
+    /// faer's `LDLᵀ` or LU, never the banded LU (for comparisons).
+    General,
+    /// The smoothed-aggregation multigrid preconditioned Krylov solver, whatever the size;
+    /// a solve it cannot converge falls back to faer's LU. Slower than the direct solvers
+    /// on stretched meshes (docs/large-models.md).
+    Iterative,
 }
 
 /// When the solver checks its assembled tangent by finite differences at a failing iterate
@@ -121,6 +143,7 @@ impl Default for NewtonSettings {
             divergence_factor: 1e8,
             freeze_after: 4,
             check_tangent: TangentCheckWhen::OnFailure,
+            linear_solver: LinearSolver::Auto,
         }
     }
 }

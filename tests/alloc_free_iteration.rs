@@ -16,9 +16,9 @@
 
 mod common;
 
-use contrail::assembly::sparse::LinearSolver;
 use contrail::assembly::Assembler;
 use contrail::contact::law::ContactState;
+use contrail::linalg::sparse::LinearSolver;
 use contrail::solver::newton::{solve_increment, Workspace};
 use contrail::solver::state::TrialState;
 use std::alloc::{GlobalAlloc, Layout, System};

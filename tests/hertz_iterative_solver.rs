@@ -1,28 +1,26 @@
 //! Hertz line contact (the built-in `hertz` scene, 40 × 30 mesh: rigid cylinder R = 1 pressed
 //! into a Neo-Hookean block, penalty contact) solved twice: with faer's sparse LU and with
-//! the multigrid-preconditioned Krylov solver (`CONTRAIL_LINEAR_SOLVER=iterative`,
-//! `assembly::iterative`, relative residual 1e-9 per solve).
+//! the multigrid-preconditioned Krylov solver (`solver.linear_solver = "iterative"`,
+//! `linalg::iterative`, relative residual 1e-9 per solve).
 //!
 //! Reference: the LU run. Tolerances: the Newton iterations within one of the LU run's (the
 //! inexact solves change the last iterate: measured 20 against 21) and no cut-back in
 //! either, every contact point's normal force equal to 1e-6 of the largest, and the
 //! iterative solver really used (every Newton solve converged by it, none handed to the
 //! LU). The symmetric tangent is indefinite in some iterates, so the solves are BiCGStab's.
-//!
-//! One test in this binary: the solver is chosen through a process-wide environment
-//! variable.
 
 mod common;
 
 #[test]
 fn iterative_and_direct_solvers_give_the_same_hertz_contact() {
-    let problem = common::scene("hertz", &["body.block.mesh.elements=[40, 30]"]);
     let mut runs = Vec::new();
-    for solver in ["sparse", "iterative"] {
-        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
-        runs.push(common::solve_ok(&problem));
+    for solver in ["sparse-lu", "iterative"] {
+        let set = format!("solver.linear_solver={solver}");
+        runs.push(common::solve_ok(&common::scene(
+            "hertz",
+            &["body.block.mesh.elements=[40, 30]", &set],
+        )));
     }
-    std::env::remove_var("CONTRAIL_LINEAR_SOLVER");
     let ((lu, lu_mem), (it, it_mem)) = (&runs[0], &runs[1]);
     let stats = it.iterative;
     println!(

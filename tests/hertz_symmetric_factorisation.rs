@@ -1,7 +1,7 @@
 //! Hertz line contact (the built-in `hertz` scene, 40 × 30 mesh: rigid cylinder R = 1 pressed
 //! into a Neo-Hookean block, frictionless penalty contact) solved with faer's sparse `LDLᵀ`
-//! (AMD ordering, chosen because the tangent is symmetric; `assembly::ldlt`) and with faer's
-//! sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`); and the frictional `block-slide` scene
+//! (AMD ordering, chosen because the tangent is symmetric; `linalg::ldlt`) and with faer's
+//! sparse LU (`solver.linear_solver = "sparse-lu"`); and the frictional `block-slide` scene
 //! (μ = 0.3, slip tangents are unsymmetric) the same two ways.
 //!
 //! Reference: the LU runs. Tolerances: Hertz — every factorisation of the `LDLᵀ` run made
@@ -10,22 +10,21 @@
 //! only). Block slide — the `LDLᵀ` plan is retired at the first unsymmetric tangent (the
 //! fallback reason is `Unsymmetric`), the LU serves the rest, and the final displacements
 //! equal the LU run's to 1e-9 of the largest.
-//!
-//! One test in this binary: the solver is chosen through a process-wide environment
-//! variable.
 
 mod common;
 
-use contrail::assembly::ldlt::LdltFailure;
+use contrail::linalg::ldlt::LdltFailure;
 
 #[test]
 fn symmetric_and_general_factorisations_give_the_same_contact() {
     // Hertz: symmetric throughout
-    let problem = common::scene("hertz", &["body.block.mesh.elements=[40, 30]"]);
     let mut runs = Vec::new();
-    for solver in ["sparse", "general"] {
-        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
-        runs.push(common::solve_ok(&problem));
+    for solver in ["sparse-lu", "general"] {
+        let set = format!("solver.linear_solver={solver}");
+        runs.push(common::solve_ok(&common::scene(
+            "hertz",
+            &["body.block.mesh.elements=[40, 30]", &set],
+        )));
     }
     let ((lu, lu_mem), (ld, ld_mem)) = (&runs[0], &runs[1]);
     println!(
@@ -40,13 +39,11 @@ fn symmetric_and_general_factorisations_give_the_same_contact() {
     common::assert_same_normal_forces(lu_mem, ld_mem, 1e-9, ("LU", "LDLT"));
 
     // block slide: friction makes the tangent unsymmetric once the block slips
-    let problem = common::scene("block-slide", &[]);
     let mut runs = Vec::new();
-    for solver in ["sparse", "general"] {
-        std::env::set_var("CONTRAIL_LINEAR_SOLVER", solver);
-        runs.push(common::solve_ok(&problem));
+    for solver in ["sparse-lu", "general"] {
+        let set = format!("solver.linear_solver={solver}");
+        runs.push(common::solve_ok(&common::scene("block-slide", &[&set])));
     }
-    std::env::remove_var("CONTRAIL_LINEAR_SOLVER");
     let ((lu, lu_mem), (ld, ld_mem)) = (&runs[0], &runs[1]);
     println!("block slide: {:?}", ld.ldlt);
     assert!(ld.ldlt.fallbacks >= 1, "{:?}", ld.ldlt);

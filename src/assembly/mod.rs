@@ -1,22 +1,13 @@
 //! Global assembly: DOF numbering (prescribed DOFs eliminated), element and contact
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
-pub mod aggregation;
-pub mod amg;
-pub mod band;
-pub mod band_plan;
-pub mod csr;
-pub mod faer_lu;
 pub mod helper;
-pub mod iterative;
-pub mod ldlt;
-pub mod sparse;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
 use crate::element::quad::{quad_residual_tangent_with, ElementError, QuadGeometry};
+use crate::linalg::sparse::SparseMatrix;
 use crate::model::Model;
-use sparse::SparseMatrix;
 use std::time::{Duration, Instant};
 
 /// Where the time of the Newton iterations went (accumulated over a run).

@@ -234,7 +234,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
 
 /// The iterative solver's account, when it was used: "LU" in `time spent` is then the
 /// multigrid setup and "solve" the Krylov iterations.
-fn iterative_line(it: &contrail::assembly::iterative::IterativeStats) -> Option<String> {
+fn iterative_line(it: &contrail::linalg::iterative::IterativeStats) -> Option<String> {
     if it.solves + it.failures == 0 {
         return None;
     }
@@ -262,7 +262,7 @@ fn iterative_line(it: &contrail::assembly::iterative::IterativeStats) -> Option<
 }
 
 /// The symmetric factorisations' line, when any was planned.
-fn ldlt_line(l: &contrail::assembly::ldlt::LdltStats, factorizations: usize) -> Option<String> {
+fn ldlt_line(l: &contrail::linalg::ldlt::LdltStats, factorizations: usize) -> Option<String> {
     if l.plans == 0 {
         return None;
     }
@@ -273,9 +273,9 @@ fn ldlt_line(l: &contrail::assembly::ldlt::LdltStats, factorizations: usize) -> 
     );
     if let Some(f) = l.last_failure {
         let why = match f {
-            contrail::assembly::ldlt::LdltFailure::Unsymmetric => "the tangent became unsymmetric".to_string(),
-            contrail::assembly::ldlt::LdltFailure::ZeroPivot => "a zero pivot".to_string(),
-            contrail::assembly::ldlt::LdltFailure::Inaccurate(eta) => format!("backward error {eta:.1e}"),
+            contrail::linalg::ldlt::LdltFailure::Unsymmetric => "the tangent became unsymmetric".to_string(),
+            contrail::linalg::ldlt::LdltFailure::ZeroPivot => "a zero pivot".to_string(),
+            contrail::linalg::ldlt::LdltFailure::Inaccurate(eta) => format!("backward error {eta:.1e}"),
         };
         line.push_str(&format!(
             "; {} fallback(s) to the LU (last: {why}), after which the LU served the rest of that pattern",

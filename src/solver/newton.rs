@@ -3,8 +3,8 @@
 
 use super::active_set::{hold_first_correction, touching_points, ActiveSetWatch};
 use super::state::TrialState;
-use crate::assembly::sparse::LinearError;
 use crate::assembly::{Assembler, AssemblyError};
+use crate::linalg::sparse::LinearError;
 use crate::model::Model;
 use crate::record::{FailureKind, IterationRecord};
 use crate::settings::{LineSearch, NewtonSettings};

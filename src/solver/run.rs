@@ -95,9 +95,9 @@ pub struct RunSummary {
     /// Time spent handing records to the observer (serialising, writing, viewing).
     pub recording_s: f64,
     /// Counts of the iterative linear solves (all zero when only direct LUs were used).
-    pub iterative: crate::assembly::iterative::IterativeStats,
+    pub iterative: crate::linalg::iterative::IterativeStats,
     /// Counts of the symmetric (`LDLᵀ`) factorisations (all zero when none was made).
-    pub ldlt: crate::assembly::ldlt::LdltStats,
+    pub ldlt: crate::linalg::ldlt::LdltStats,
     /// Elements that lost stability at some converged increment (see
     /// [`super::element_check`]): the first such increment, the most at one increment and
     /// the worst element seen.
@@ -257,6 +257,7 @@ fn drive(
     let st = &settings.stepping;
     let nominal = st.end / st.increments.max(1) as f64;
     let mut asm = Assembler::new(model);
+    asm.matrix.set_solver(settings.newton.linear_solver);
     let mut ws = Workspace::default();
     let mut committed = TrialState::new(model);
     let labels = crate::record::ContactLabels::new(model);

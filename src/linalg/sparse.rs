@@ -22,38 +22,7 @@ pub enum LinearError {
     Band(#[from] super::band::ZeroPivot),
 }
 
-/// Which direct solver factorises the matrix.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LinearSolver {
-    /// Banded LU after reverse Cuthill–McKee when the band is narrow; otherwise faer's sparse
-    /// `LDLᵀ` (AMD ordering) while the matrix is symmetric ([`super::ldlt`]), faer's sparse
-    /// LU when it is not (default).
-    Auto,
-    /// Always faer's sparse LU (`CONTRAIL_LINEAR_SOLVER=sparse`, for comparisons).
-    Sparse,
-    /// faer's `LDLᵀ` or LU, never the banded LU (`CONTRAIL_LINEAR_SOLVER=general`, for
-    /// comparisons).
-    General,
-    /// The multigrid-preconditioned Krylov solver ([`super::iterative`]) when the matrix
-    /// knows its nodes (`CONTRAIL_LINEAR_SOLVER=iterative`), whatever the size; a solve it
-    /// cannot converge falls back to faer's LU.
-    Iterative,
-}
-
-impl LinearSolver {
-    /// The choice from the environment variable `CONTRAIL_LINEAR_SOLVER` (`sparse`,
-    /// `general`, `iterative` or `auto`; anything else means `auto`): a diagnostic switch for
-    /// benchmarks, not a setting of a study (the solvers give the same solution to round-off,
-    /// the iterative one to its tolerance, [`super::iterative::RELATIVE_TOLERANCE`]).
-    pub fn from_env() -> Self {
-        match std::env::var("CONTRAIL_LINEAR_SOLVER").as_deref() {
-            Ok("sparse") => LinearSolver::Sparse,
-            Ok("general") => LinearSolver::General,
-            Ok("iterative") => LinearSolver::Iterative,
-            _ => LinearSolver::Auto,
-        }
-    }
-}
+pub use crate::settings::LinearSolver;
 
 /// Square sparse matrix with a fixed pattern.
 pub struct SparseMatrix {
@@ -129,7 +98,7 @@ impl SparseMatrix {
             ldlt: None,
             ldlt_decided: false,
             ldlt_stats: LdltStats::default(),
-            solver: LinearSolver::from_env(),
+            solver: LinearSolver::Auto,
             band: None,
             band_decided: false,
             nodes: None,

@@ -60,7 +60,7 @@ fn banded_and_sparse_lu_agree_on_a_strip() {
     };
     let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
     let mut solutions = Vec::new();
-    for solver in [LinearSolver::Auto, LinearSolver::Sparse] {
+    for solver in [LinearSolver::Auto, LinearSolver::SparseLu] {
         let mut a = SparseMatrix::new(n, &mut groups.clone().into_iter());
         a.set_solver(solver);
         fill(&mut a);
@@ -104,7 +104,7 @@ fn symmetric_matrix_is_solved_by_ldlt() {
     let n = 2 * (nx + 1) * (ny + 1);
     let x: Vec<f64> = (0..n).map(|i| (0.3 * i as f64).cos()).collect();
     let mut solutions = Vec::new();
-    for solver in [LinearSolver::General, LinearSolver::Sparse] {
+    for solver in [LinearSolver::General, LinearSolver::SparseLu] {
         let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
         a.set_solver(solver);
         fill_grid(&mut a, 12.0, 0.0);

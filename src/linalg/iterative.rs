@@ -424,7 +424,7 @@ mod tests {
             assert_eq!(stats.cg_solves, usize::from(unsymmetric == 0.0));
             assert!(stats.krylov_iterations < 60, "{stats:?}");
             let mut x_lu = b.clone();
-            a.set_solver(LinearSolver::Sparse);
+            a.set_solver(LinearSolver::SparseLu);
             a.solve(&mut x_lu).unwrap();
             let scale = x_lu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (i, (p, q)) in x_it.iter().zip(&x_lu).enumerate() {
