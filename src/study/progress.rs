@@ -7,6 +7,7 @@ use super::StudyOutcome;
 use crate::model::Model;
 use crate::record::{ChangingPoint, IncrementRecord, Observer, ObserverError, RunInfo, StepView};
 use serde::{Deserialize, Serialize};
+use serde_json::Value;
 use std::io::Write;
 
 /// One line of a progress stream.
@@ -46,9 +47,49 @@ pub enum ProgressLine {
 }
 
 impl ProgressLine {
-    /// Parse one line (None: not a progress line).
+    /// Parse one line (None: not a progress line). JSON writes a non-finite number as
+    /// `null`, which a number field does not take back: an outcome with such values (the
+    /// position of an unpaired contact point is NaN) is read leniently (see [`lenient`]).
     pub fn parse(line: &str) -> Option<ProgressLine> {
-        serde_json::from_str(line.trim()).ok()
+        let line = line.trim();
+        if !line.starts_with('{') {
+            return None;
+        }
+        serde_json::from_str(line).ok().or_else(|| {
+            let v: Value = serde_json::from_str(line).ok()?;
+            (v["kind"] == "end").then(|| ProgressLine::End {
+                outcome: Box::new(lenient(&v["outcome"])),
+                culprit: serde_json::from_value(v["culprit"].clone()).unwrap_or_default(),
+            })
+        })
+    }
+}
+
+/// Entries of a JSON array that read as `T` (those with a `null` for a non-finite number
+/// are left out).
+fn entries<T: serde::de::DeserializeOwned>(v: &Value) -> Vec<T> {
+    v.as_array()
+        .map(|a| a.iter().filter_map(|x| serde_json::from_value(x.clone()).ok()).collect())
+        .unwrap_or_default()
+}
+
+/// An outcome read part by part: status and figures as they are, the data's lists without
+/// the entries that carried non-finite numbers.
+fn lenient(v: &Value) -> StudyOutcome {
+    let d = &v["data"];
+    StudyOutcome {
+        status: serde_json::from_value(v["status"].clone()).unwrap_or(super::Status::Interrupted {
+            increment: 0,
+            t: f64::NAN,
+        }),
+        figures: serde_json::from_value(v["figures"].clone()).unwrap_or_default(),
+        data: super::RunData {
+            curve: entries(&d["curve"]),
+            crossings: entries(&d["crossings"]),
+            final_contact: entries(&d["final_contact"]),
+            final_reaction: serde_json::from_value(d["final_reaction"].clone()).unwrap_or_default(),
+            contact_lost: entries(&d["contact_lost"]),
+        },
     }
 }
 
@@ -159,5 +200,20 @@ mod tests {
             other => panic!("last line {other:?}"),
         }
         assert!(ProgressLine::parse("written runs/x.mcap").is_none());
+        // a non-finite number is written as null and read back leniently
+        let mut end = serde_json::to_value(ProgressLine::End {
+            outcome: Box::new(out.clone()),
+            culprit: vec![],
+        })
+        .unwrap();
+        end["outcome"]["data"]["final_contact"] = serde_json::json!([[null, 0.0], [0.5, 1.0]]);
+        match ProgressLine::parse(&end.to_string()) {
+            Some(ProgressLine::End { outcome, .. }) => {
+                assert_eq!(outcome.status, out.status);
+                assert_eq!(outcome.data.curve, out.data.curve);
+                assert_eq!(outcome.data.final_contact, vec![[0.5, 1.0]]);
+            }
+            other => panic!("{other:?}"),
+        }
     }
 }

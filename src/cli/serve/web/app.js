@@ -3,7 +3,10 @@
 // (#/compare/A/B). Live updates come from the server-sent events of /api/events.
 "use strict";
 
-const token = new URLSearchParams(location.search).get("token");
+const query = new URLSearchParams(location.search);
+const token = query.get("token");
+// ?live=0: no event streams (a snapshot of the page, e.g. for a headless browser's screenshot)
+const liveUpdates = query.get("live") !== "0";
 const withToken = (url) => token ? url + (url.includes("?") ? "&" : "?") + "token=" + encodeURIComponent(token) : url;
 const api = async (path) => {
   const res = await fetch(withToken(path));
@@ -89,7 +92,8 @@ function chart(series, opts = {}) {
   const sx = (x) => L + (x - x0) / (x1 - x0) * (W - L - R), sy = (y) => H - B - (y - y0) / (y1 - y0) * (H - T - B);
   let g = "";
   for (let i = 0; i <= 5; i++) {
-    const xv = x0 + i * (x1 - x0) / 5, yv = y0 + i * (y1 - y0) / 5;
+    const snap = (v, span) => Math.abs(v) < 1e-9 * span ? 0 : v;
+    const xv = snap(x0 + i * (x1 - x0) / 5, x1 - x0), yv = snap(y0 + i * (y1 - y0) / 5, y1 - y0);
     g += `<line class="grid" x1="${sx(xv)}" x2="${sx(xv)}" y1="${T}" y2="${H - B}"/><text x="${sx(xv)}" y="${H - B + 16}" text-anchor="middle">${fmt(xv, 3)}</text>`;
     g += `<line class="grid" x1="${L}" x2="${W - R}" y1="${sy(yv)}" y2="${sy(yv)}"/><text x="${L - 6}" y="${sy(yv) + 4}" text-anchor="end">${fmt(yv, 3)}</text>`;
   }
@@ -158,7 +162,7 @@ async function showRun(id) {
       <p class="muted">on the service's machine: <code>${esc(r.commands.local)}</code></p>
     </div>
     ${r.log ? `<div class="card"><h2>solver summary</h2><pre>${esc(r.log)}</pre></div>` : ""}`;
-  if (r.status === "running" || r.status === "queued") {
+  if (liveUpdates && (r.status === "running" || r.status === "queued")) {
     closeStream();
     currentStream = new EventSource(withToken(`/api/runs/${encodeURIComponent(id)}/events`));
     let pending = false;
@@ -247,4 +251,4 @@ $("#compare").addEventListener("click", () => { const [a, b] = [...selected]; lo
 window.addEventListener("hashchange", route);
 route();
 health();
-live();
+if (liveUpdates) live();
