@@ -17,7 +17,9 @@ use std::time::{Duration, Instant};
 fn processes_with(needle: &str) -> Vec<u32> {
     let mut out = Vec::new();
     for e in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
+        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
         let cmd = std::fs::read(e.path().join("cmdline")).unwrap_or_default();
         let state = std::fs::read_to_string(e.path().join("stat")).unwrap_or_default();
         let zombie = state.split_whitespace().nth(2) == Some("Z");
@@ -42,7 +44,10 @@ fn kill_9_mid_run_then_restart_interrupts_and_recovers_it_and_the_queue_goes_on(
     let dir = TempDir::new("svc-kill");
     let data = dir.0.join("data");
     let mut srv = Server::start(&data, &["--workers", "1"]);
-    let (_, a) = srv.post("/api/runs", &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }));
+    let (_, a) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }),
+    );
     let a = a["id"].as_str().unwrap().to_string();
     let queued: Vec<String> = [json!({ "scene": "crossing" }), json!({ "scene": "block-slide" })]
         .iter()
@@ -66,7 +71,10 @@ fn kill_9_mid_run_then_restart_interrupts_and_recovers_it_and_the_queue_goes_on(
     let needle = format!("runs/{a}.mcap");
     let t0 = Instant::now();
     while !processes_with(&needle).is_empty() {
-        assert!(t0.elapsed() < Duration::from_secs(10), "the solver outlived the service");
+        assert!(
+            t0.elapsed() < Duration::from_secs(10),
+            "the solver outlived the service"
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
     assert!(!part_files(&data).is_empty());
@@ -91,7 +99,9 @@ fn kill_9_mid_run_then_restart_interrupts_and_recovers_it_and_the_queue_goes_on(
     let check: String = db.query_row("PRAGMA integrity_check", [], |r| r.get(0)).unwrap();
     assert_eq!(check, "ok");
     let (rows, ids): (i64, i64) = db
-        .query_row("SELECT COUNT(*), COUNT(DISTINCT id) FROM runs", [], |r| Ok((r.get(0)?, r.get(1)?)))
+        .query_row("SELECT COUNT(*), COUNT(DISTINCT id) FROM runs", [], |r| {
+            Ok((r.get(0)?, r.get(1)?))
+        })
         .unwrap();
     assert_eq!((rows, ids), (3, 3));
     let (_, l) = srv.get("/api/runs?status=running");
@@ -127,7 +137,10 @@ fn a_full_disk_fails_the_run_that_hit_it_and_the_service_keeps_serving() {
     let _unmount = Unmount(&mnt);
     let data = mnt.join("data");
     let srv = Server::start(&data, &["--workers", "1"]);
-    let (_, big) = srv.post("/api/runs", &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }));
+    let (_, big) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }),
+    );
     let big = srv.wait_ended(big["id"].as_str().unwrap(), 300);
     assert_eq!(big["status"], "failed", "{big}");
     assert_eq!(big["failure_kind"], "recording", "{big}");
@@ -136,7 +149,10 @@ fn a_full_disk_fails_the_run_that_hit_it_and_the_service_keeps_serving() {
     // still serving, and solving: a small run completes once the failed run's space is freed
     let (s, h) = srv.get("/api/health");
     assert_eq!((s, h["status"].as_str()), (200, Some("ok")));
-    let (_, small) = srv.post("/api/runs", &json!({ "scene": "crossing", "set": ["stepping.increments=20"] }));
+    let (_, small) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "crossing", "set": ["stepping.increments=20"] }),
+    );
     let small = srv.wait_ended(small["id"].as_str().unwrap(), 120);
     assert_eq!(small["status"], "completed", "{small}");
     assert!(part_files(&data).is_empty());

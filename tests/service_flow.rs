@@ -113,8 +113,14 @@ fn the_same_run_is_catalogued_once_sweeps_get_the_sweep_ids_and_filters_find_run
     assert_eq!(b["existing"], true);
     let id = a["id"].as_str().unwrap().to_string();
     srv.wait_ended(&id, 60);
-    let (s3, c) = srv.post("/api/runs", &json!({ "scene": "crossing", "set": ["stepping.increments=40"], "rerun": true }));
-    assert_eq!((s3, c["id"].as_str(), c["attempt"].as_i64()), (201, Some(id.as_str()), Some(2)));
+    let (s3, c) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "crossing", "set": ["stepping.increments=40"], "rerun": true }),
+    );
+    assert_eq!(
+        (s3, c["id"].as_str(), c["attempt"].as_i64()),
+        (201, Some(id.as_str()), Some(2))
+    );
     assert_eq!(srv.wait_ended(&id, 60)["status"], "completed");
 
     let plan = "name = \"mu\"\n[[study]]\nscene = \"block-slide\"\nset = [\"stepping.increments=12\"]\n\
@@ -122,7 +128,11 @@ fn the_same_run_is_catalogued_once_sweeps_get_the_sweep_ids_and_filters_find_run
     let (s, sw) = srv.post("/api/sweeps", &json!({ "plan": plan }));
     assert_eq!(s, 201, "{sw}");
     let parsed = contrail::sweep::Plan::parse(plan, "p", std::path::Path::new("")).unwrap();
-    let expected: Vec<String> = contrail::sweep::expand(&parsed).unwrap().into_iter().map(|r| r.id).collect();
+    let expected: Vec<String> = contrail::sweep::expand(&parsed)
+        .unwrap()
+        .into_iter()
+        .map(|r| r.id)
+        .collect();
     let got: Vec<String> = serde_json::from_value(sw["runs"].clone()).unwrap();
     assert_eq!(got, expected, "the ids of `contrail sweep`");
     for i in &got {
@@ -139,12 +149,18 @@ fn the_same_run_is_catalogued_once_sweeps_get_the_sweep_ids_and_filters_find_run
     let f = srv.wait_ended(f["id"].as_str().unwrap(), 60);
     assert_eq!(f["status"], "failed");
     let kind = f["failure_kind"].as_str().unwrap().to_string();
-    assert!(!f["culprit"].as_array().unwrap().is_empty(), "the failure names its culprit points");
+    assert!(
+        !f["culprit"].as_array().unwrap().is_empty(),
+        "the failure names its culprit points"
+    );
     let (_, l) = srv.get(&format!("/api/runs?failure_kind={kind}"));
     assert_eq!(l["total"], 1);
     let (code, out, _) = srv.client(&["runs", "--status", "failed"]);
     assert_eq!(code, 0);
-    assert!(out.contains(f["id"].as_str().unwrap()) && out.contains("1 of 1 runs"), "{out}");
+    assert!(
+        out.contains(f["id"].as_str().unwrap()) && out.contains("1 of 1 runs"),
+        "{out}"
+    );
 }
 
 /// Events of a run's stream until it ends: (event, data) pairs.
@@ -170,7 +186,10 @@ fn live_events_follow_a_run_and_cancel_interrupts_with_a_finalised_recording() {
     let long = json!({ "scene": "strip-channel", "set": ["stepping.increments=200000"] });
     let (_, a) = srv.post("/api/runs", &long);
     let a = a["id"].as_str().unwrap().to_string();
-    let (_, b) = srv.post("/api/runs", &json!({ "scene": "block-slide", "set": ["stepping.increments=24"] }));
+    let (_, b) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "block-slide", "set": ["stepping.increments=24"] }),
+    );
     let b = b["id"].as_str().unwrap().to_string();
     let (_, c) = srv.post("/api/runs", &json!({ "scene": "crossing" }));
     let c = c["id"].as_str().unwrap().to_string();
@@ -185,7 +204,10 @@ fn live_events_follow_a_run_and_cancel_interrupts_with_a_finalised_recording() {
     let ra = srv.wait_ended(&a, 60);
     assert_eq!(ra["status"], "interrupted", "{ra}");
     let rec = Recording::open(&srv.data.join(format!("runs/{a}.mcap"))).unwrap();
-    assert!(matches!(rec.outcome, Some(Outcome::Interrupted { .. })), "the recording ends in its outcome");
+    assert!(
+        matches!(rec.outcome, Some(Outcome::Interrupted { .. })),
+        "the recording ends in its outcome"
+    );
     assert!(!rec.increments.is_empty());
 
     let seen = follower.join().unwrap();
@@ -195,23 +217,36 @@ fn live_events_follow_a_run_and_cancel_interrupts_with_a_finalised_recording() {
         .filter(|(e, d)| e == "progress" && d["data"]["kind"] == "increment")
         .map(|(_, d)| &d["data"])
         .collect();
-    assert!(seen.iter().any(|(e, d)| e == "progress" && d["data"]["kind"] == "start"));
+    assert!(seen
+        .iter()
+        .any(|(e, d)| e == "progress" && d["data"]["kind"] == "start"));
     assert_eq!(progress.len() as u64, rb["figures"]["increments"].as_u64().unwrap());
-    assert!(progress.windows(2).all(|w| w[1]["increment"].as_u64() > w[0]["increment"].as_u64()));
+    assert!(progress
+        .windows(2)
+        .all(|w| w[1]["increment"].as_u64() > w[0]["increment"].as_u64()));
     assert!(progress.iter().all(|p| p["force"].is_number() && p["t"].is_number()));
     let last = seen.last().unwrap();
-    assert_eq!((last.0.as_str(), last.1["data"]["status"].as_str()), ("status", Some("completed")));
+    assert_eq!(
+        (last.0.as_str(), last.1["data"]["status"].as_str()),
+        ("status", Some("completed"))
+    );
     let (s, e) = srv.post(&format!("/api/runs/{b}/cancel"), &json!({}));
     assert_eq!((s, e["error"]["code"].as_str()), (409, Some("finished")));
 
     // the diff of two runs of one scene, and its refusal across scenes
-    let (_, d) = srv.post("/api/runs", &json!({ "scene": "block-slide", "set": ["stepping.increments=24", "contact.mu=0.5"] }));
+    let (_, d) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "block-slide", "set": ["stepping.increments=24", "contact.mu=0.5"] }),
+    );
     let d = d["id"].as_str().unwrap().to_string();
     srv.wait_ended(&d, 60);
     let (s, diff) = srv.get(&format!("/api/diff?a={b}&b={d}"));
     assert_eq!(s, 200, "{diff}");
     assert_eq!(diff["within_tolerance"], false);
-    assert_eq!((diff["only_in_a"].as_u64(), diff["only_in_b"].as_u64()), (Some(0), Some(0)));
+    assert_eq!(
+        (diff["only_in_a"].as_u64(), diff["only_in_b"].as_u64()),
+        (Some(0), Some(0))
+    );
     let (s, e) = srv.get(&format!("/api/diff?a={b}&b={a}"));
     assert_eq!((s, e["error"]["code"].as_str()), (400, Some("bad-request")), "{e}");
 }

@@ -73,25 +73,42 @@ fn fifty_clients_a_thousand_submissions_every_run_catalogued_once() {
     let t1 = Instant::now();
     loop {
         let (_, l) = srv.get("/api/runs?limit=1000");
-        let done = l["runs"].as_array().unwrap().iter().filter(|r| r["status"] == "completed").count();
+        let done = l["runs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|r| r["status"] == "completed")
+            .count();
         if done == DISTINCT {
-            let listed: BTreeSet<String> =
-                l["runs"].as_array().unwrap().iter().map(|r| r["id"].as_str().unwrap().to_string()).collect();
+            let listed: BTreeSet<String> = l["runs"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|r| r["id"].as_str().unwrap().to_string())
+                .collect();
             assert_eq!(listed, all);
             assert_eq!(l["total"], DISTINCT);
             break;
         }
-        assert!(t1.elapsed() < Duration::from_secs(600), "{done} of {DISTINCT} runs completed");
+        assert!(
+            t1.elapsed() < Duration::from_secs(600),
+            "{done} of {DISTINCT} runs completed"
+        );
         std::thread::sleep(Duration::from_millis(200));
     }
     let solved = t0.elapsed();
     let db = rusqlite::Connection::open(srv.data.join("catalogue.sqlite")).unwrap();
     let (rows, distinct): (i64, i64) = db
-        .query_row("SELECT COUNT(*), COUNT(DISTINCT id) FROM runs", [], |r| Ok((r.get(0)?, r.get(1)?)))
+        .query_row("SELECT COUNT(*), COUNT(DISTINCT id) FROM runs", [], |r| {
+            Ok((r.get(0)?, r.get(1)?))
+        })
         .unwrap();
     assert_eq!((rows, distinct), (DISTINCT as i64, DISTINCT as i64));
     for id in &all {
-        assert!(srv.data.join(format!("runs/{id}.mcap")).is_file(), "{id} has its recording");
+        assert!(
+            srv.data.join(format!("runs/{id}.mcap")).is_file(),
+            "{id} has its recording"
+        );
     }
     let mut s = submit_ms.lock().unwrap().clone();
     let mut r = read_ms.lock().unwrap().clone();

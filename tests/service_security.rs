@@ -7,7 +7,9 @@ use serde_json::{json, Value};
 use service_common::{Server, TempDir, BIN};
 
 fn error_code(v: &Value) -> &str {
-    v["error"]["code"].as_str().unwrap_or_else(|| panic!("not a JSON error: {v}"))
+    v["error"]["code"]
+        .as_str()
+        .unwrap_or_else(|| panic!("not a JSON error: {v}"))
 }
 
 #[test]
@@ -83,8 +85,14 @@ fn bad_ids_paths_bodies_and_scenes_get_clear_json_errors() {
         (json!({ "scene": "crossing", "colour": 1 }), "unknown field"),
         (json!({ "scene": "crossing", "set": ["contact.nope=1"] }), "nope"),
         (json!({ "scene": "crossing", "set": ["no-equals-sign"] }), "KEY=VALUE"),
-        (json!({ "scene": "block-slide", "set": ["body.block.mesh.elements=[400, 400]"] }), "160000 elements"),
-        (json!({ "scene_toml": contrail::scene::builtin::find("half-disc").unwrap().text }), "mesh file"),
+        (
+            json!({ "scene": "block-slide", "set": ["body.block.mesh.elements=[400, 400]"] }),
+            "160000 elements",
+        ),
+        (
+            json!({ "scene_toml": contrail::scene::builtin::find("half-disc").unwrap().text }),
+            "mesh file",
+        ),
         (json!({ "scene_toml": "this is not toml" }), "scenes/"),
     ];
     for (body, needle) in cases {
@@ -93,13 +101,19 @@ fn bad_ids_paths_bodies_and_scenes_get_clear_json_errors() {
         let message = v["error"]["message"].as_str().unwrap_or_else(|| panic!("{body}: {v}"));
         assert!(message.contains(needle), "{body}: {message}");
     }
-    let mut req = ureq::post(format!("{}/api/runs", srv.url)).config().http_status_as_error(false).build();
+    let mut req = ureq::post(format!("{}/api/runs", srv.url))
+        .config()
+        .http_status_as_error(false)
+        .build();
     req = req.header("Content-Type", "application/json");
     let mut res = req.send("{not json").unwrap();
     assert_eq!(res.status().as_u16(), 400);
     let v: Value = res.body_mut().read_json().unwrap();
     assert_eq!(error_code(&v), "bad-json");
-    let (s, v) = srv.post("/api/sweeps", &json!({ "plan": "name = \"p\"\n[[study]]\nscene = \"../../x.toml\"\n" }));
+    let (s, v) = srv.post(
+        "/api/sweeps",
+        &json!({ "plan": "name = \"p\"\n[[study]]\nscene = \"../../x.toml\"\n" }),
+    );
     assert_eq!((s, error_code(&v)), (400, "bad-request"));
     // nothing of this reached the catalogue
     assert_eq!(srv.get("/api/runs").1["total"], 0);

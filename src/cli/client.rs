@@ -131,9 +131,16 @@ impl Client {
             "{} ({status}): {}{}",
             self.base,
             e["message"].as_str().unwrap_or("request failed"),
-            e["hint"].as_str().filter(|h| !h.is_empty()).map_or(String::new(), |h| format!("\n  hint: {h}"))
+            e["hint"]
+                .as_str()
+                .filter(|h| !h.is_empty())
+                .map_or(String::new(), |h| format!("\n  hint: {h}"))
         );
-        Err(if status.is_client_error() { BadInput(msg).into() } else { anyhow::anyhow!(msg) })
+        Err(if status.is_client_error() {
+            BadInput(msg).into()
+        } else {
+            anyhow::anyhow!(msg)
+        })
     }
 
     fn get(&self, path: &str) -> anyhow::Result<Value> {
@@ -183,7 +190,10 @@ pub fn submit(a: SubmitArgs) -> anyhow::Result<ExitCode> {
     let c = Client::new(&a.server);
     if a.plan {
         let plan = std::fs::read_to_string(&a.scene).map_err(|e| BadInput(format!("{}: cannot read: {e}", a.scene)))?;
-        let v = c.post("/api/sweeps", &json!({ "plan": plan, "rerun": a.rerun, "positions_every": a.positions_every }))?;
+        let v = c.post(
+            "/api/sweeps",
+            &json!({ "plan": plan, "rerun": a.rerun, "positions_every": a.positions_every }),
+        )?;
         outln!(
             "plan {}: {} runs, {} queued, {} already catalogued",
             v["plan"].as_str().unwrap_or(""),
@@ -207,7 +217,11 @@ pub fn submit(a: SubmitArgs) -> anyhow::Result<ExitCode> {
     }
     let v = c.post("/api/runs", &body)?;
     let id = v["id"].as_str().unwrap_or("").to_string();
-    let state = if v["existing"].as_bool() == Some(true) { "catalogued" } else { "queued" };
+    let state = if v["existing"].as_bool() == Some(true) {
+        "catalogued"
+    } else {
+        "queued"
+    };
     outln!("run {id} {state} ({})", v["status"].as_str().unwrap_or(""))?;
     outln!("page {}/#/runs/{id}", c.base)?;
     if !a.wait {
@@ -226,13 +240,18 @@ fn wait(c: &Client, id: &str) -> anyhow::Result<ExitCode> {
         let quiet = !std::io::IsTerminal::is_terminal(&std::io::stderr());
         for line in BufReader::new(res.into_body().into_reader()).lines() {
             let Ok(line) = line else { break };
-            let Some(data) = line.strip_prefix("data:") else { continue };
+            let Some(data) = line.strip_prefix("data:") else {
+                continue;
+            };
             let v: Value = serde_json::from_str(data.trim()).unwrap_or(Value::Null);
             let d = &v["data"];
             if !quiet && d["increment"].is_number() {
                 eprint!(
                     "\rincrement {} t = {:.4} / {} force {:.5e}   ",
-                    d["increment"], d["t"].as_f64().unwrap_or(0.0), d["t_end"], d["force"].as_f64().unwrap_or(f64::NAN)
+                    d["increment"],
+                    d["t"].as_f64().unwrap_or(0.0),
+                    d["t_end"],
+                    d["force"].as_f64().unwrap_or(f64::NAN)
                 );
                 let _ = std::io::stderr().flush();
             }
@@ -275,7 +294,12 @@ pub fn runs(a: RunsArgs) -> anyhow::Result<ExitCode> {
         format!("limit={}", a.limit),
         format!("order={}", if a.desc { "desc" } else { "asc" }),
     ];
-    for (k, v) in [("scene", &a.scene), ("status", &a.status), ("failure_kind", &a.failure_kind), ("sweep", &a.sweep)] {
+    for (k, v) in [
+        ("scene", &a.scene),
+        ("status", &a.status),
+        ("failure_kind", &a.failure_kind),
+        ("sweep", &a.sweep),
+    ] {
         if let Some(v) = v {
             q.push(format!("{k}={}", query_escape(v)));
         }
@@ -291,11 +315,21 @@ pub fn runs(a: RunsArgs) -> anyhow::Result<ExitCode> {
         outln!("{}", serde_json::to_string_pretty(&v)?)?;
         return Ok(ExitCode::SUCCESS);
     }
-    outln!("{:<34} {:<16} {:<12} {:<17} {:>10} {:>9}", "id", "scene", "status", "failure", "increments", "wall s")?;
+    outln!(
+        "{:<34} {:<16} {:<12} {:<17} {:>10} {:>9}",
+        "id",
+        "scene",
+        "status",
+        "failure",
+        "increments",
+        "wall s"
+    )?;
     for r in v["runs"].as_array().into_iter().flatten() {
         let incs = match r["progress"]["increment"].as_u64() {
             Some(i) => format!("{i}…"),
-            None => r["figures"]["increments"].as_u64().map_or(String::new(), |i| i.to_string()),
+            None => r["figures"]["increments"]
+                .as_u64()
+                .map_or(String::new(), |i| i.to_string()),
         };
         outln!(
             "{:<34} {:<16} {:<12} {:<17} {:>10} {:>9}",
@@ -304,7 +338,9 @@ pub fn runs(a: RunsArgs) -> anyhow::Result<ExitCode> {
             r["status"].as_str().unwrap_or(""),
             r["failure_kind"].as_str().unwrap_or(""),
             incs,
-            r["figures"]["wall_time_s"].as_f64().map_or(String::new(), |t| format!("{t:.2}"))
+            r["figures"]["wall_time_s"]
+                .as_f64()
+                .map_or(String::new(), |t| format!("{t:.2}"))
         )?;
     }
     outln!("{} of {} runs", v["runs"].as_array().map_or(0, Vec::len), v["total"])?;

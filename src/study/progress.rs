@@ -69,7 +69,11 @@ impl ProgressLine {
 /// are left out).
 fn entries<T: serde::de::DeserializeOwned>(v: &Value) -> Vec<T> {
     v.as_array()
-        .map(|a| a.iter().filter_map(|x| serde_json::from_value(x.clone()).ok()).collect())
+        .map(|a| {
+            a.iter()
+                .filter_map(|x| serde_json::from_value(x.clone()).ok())
+                .collect()
+        })
         .unwrap_or_default()
 }
 

@@ -48,13 +48,18 @@ impl Server {
             .spawn()
             .expect("start contrail serve");
         let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).unwrap();
+        BufReader::new(child.stdout.take().unwrap())
+            .read_line(&mut line)
+            .unwrap();
         let url = line
             .split_whitespace()
             .find(|w| w.starts_with("http://"))
             .unwrap_or_else(|| panic!("no address in {line:?}"))
             .to_string();
-        let token = args.iter().position(|a| *a == "--token").map(|i| args[i + 1].to_string());
+        let token = args
+            .iter()
+            .position(|a| *a == "--token")
+            .map(|i| args[i + 1].to_string());
         Server {
             child,
             url,
@@ -111,7 +116,10 @@ impl Server {
             if pred(&v) {
                 return v;
             }
-            assert!(t0.elapsed() < Duration::from_secs(secs), "run {id} did not get there: {v}");
+            assert!(
+                t0.elapsed() < Duration::from_secs(secs),
+                "run {id} did not get there: {v}"
+            );
             std::thread::sleep(Duration::from_millis(50));
         }
     }
@@ -154,7 +162,11 @@ impl Drop for Server {
 /// set (CI, where chromium was installed), a missing browser is an error.
 pub fn chromium() -> Option<String> {
     for c in ["chromium", "chromium-browser", "google-chrome"] {
-        if Command::new(c).arg("--version").output().is_ok_and(|o| o.status.success()) {
+        if Command::new(c)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+        {
             return Some(c.to_string());
         }
     }

@@ -109,7 +109,12 @@ async fn token_check(State(svc): Svc, req: Request, next: Next) -> Response {
         .get(axum::http::header::AUTHORIZATION)
         .and_then(|v| v.to_str().ok())
         .and_then(|v| v.strip_prefix("Bearer "));
-    let query = req.uri().query().unwrap_or("").split('&').find_map(|kv| kv.strip_prefix("token="));
+    let query = req
+        .uri()
+        .query()
+        .unwrap_or("")
+        .split('&')
+        .find_map(|kv| kv.strip_prefix("token="));
     let ok = header.or(query).is_some_and(|t| same(t.as_bytes(), token.as_bytes()));
     if ok {
         next.run(req).await
@@ -238,9 +243,19 @@ fn parse_filter(q: &HashMap<String, String>) -> Result<Filter, ApiError> {
             "failure_kind" => f.failure_kind = Some(v.clone()),
             "sweep" => f.sweep = Some(v.clone()),
             "sort" if SORTS.contains(&v.as_str()) => f.sort = v.clone(),
-            "sort" => return Err(ApiError::bad(format!("cannot sort by `{v}`"), format!("sort by: {}", SORTS.join(", ")))),
+            "sort" => {
+                return Err(ApiError::bad(
+                    format!("cannot sort by `{v}`"),
+                    format!("sort by: {}", SORTS.join(", ")),
+                ))
+            }
             "order" => f.descending = v == "desc",
-            "limit" => f.limit = v.parse::<usize>().map_err(|_| ApiError::bad("limit is a number", ""))?.min(1000),
+            "limit" => {
+                f.limit = v
+                    .parse::<usize>()
+                    .map_err(|_| ApiError::bad("limit is a number", ""))?
+                    .min(1000)
+            }
             "offset" => f.offset = v.parse().map_err(|_| ApiError::bad("offset is a number", ""))?,
             "token" => {}
             k if k.starts_with("param.") => f.params.push((k["param.".len()..].to_string(), v.clone())),
@@ -255,7 +270,10 @@ fn parse_filter(q: &HashMap<String, String>) -> Result<Filter, ApiError> {
     Ok(f)
 }
 
-async fn list(State(svc): Svc, q: Result<Query<HashMap<String, String>>, axum::extract::rejection::QueryRejection>) -> Result<Json<Value>, ApiError> {
+async fn list(
+    State(svc): Svc,
+    q: Result<Query<HashMap<String, String>>, axum::extract::rejection::QueryRejection>,
+) -> Result<Json<Value>, ApiError> {
     let Query(q) = q?;
     let f = parse_filter(&q)?;
     let (rows, total) = svc.catalogue.list(&f)?;
@@ -334,8 +352,11 @@ mod tests {
                 documented.push((method.clone(), path.clone()));
             }
         }
-        let mut served: Vec<(String, String)> =
-            routes().table.iter().map(|(m, p)| (m.to_string(), p.to_string())).collect();
+        let mut served: Vec<(String, String)> = routes()
+            .table
+            .iter()
+            .map(|(m, p)| (m.to_string(), p.to_string()))
+            .collect();
         documented.sort();
         served.sort();
         assert_eq!(served, documented);

@@ -134,7 +134,15 @@ const COLUMNS: &str = "seq, id, scene, scene_ref, sets, params, sweep, status, f
     metrics, log";
 
 /// Sortable columns of the list.
-pub const SORTS: &[&str] = &["seq", "id", "scene", "status", "failure_kind", "submitted_at", "finished_at"];
+pub const SORTS: &[&str] = &[
+    "seq",
+    "id",
+    "scene",
+    "status",
+    "failure_kind",
+    "submitted_at",
+    "finished_at",
+];
 
 pub fn now() -> f64 {
     std::time::SystemTime::now()
@@ -299,7 +307,9 @@ impl Catalogue {
     /// Runs left `running` by a service that stopped.
     pub fn running(&self) -> rusqlite::Result<Vec<RunRow>> {
         let db = self.db();
-        let mut st = db.prepare(&format!("SELECT {COLUMNS} FROM runs WHERE status = 'running' ORDER BY seq"))?;
+        let mut st = db.prepare(&format!(
+            "SELECT {COLUMNS} FROM runs WHERE status = 'running' ORDER BY seq"
+        ))?;
         let rows = st.query_map([], row)?.collect();
         rows
     }
@@ -329,7 +339,11 @@ impl Catalogue {
                 "id IN (SELECT id FROM params WHERE key = {ka} AND value = {va})"
             ));
         }
-        let sort = if SORTS.contains(&f.sort.as_str()) { f.sort.as_str() } else { "seq" };
+        let sort = if SORTS.contains(&f.sort.as_str()) {
+            f.sort.as_str()
+        } else {
+            "seq"
+        };
         let dir = if f.descending { "DESC" } else { "ASC" };
         let wh = cond.join(" AND ");
         let db = self.db();

@@ -160,7 +160,10 @@ pub fn conclude(svc: &Service, run: &RunRow, end: Option<(StudyOutcome, Vec<Chan
         log,
     };
     if let Err(e) = svc.catalogue.finish(&run.id, &f) {
-        eprintln!("contrail serve: run {}: cannot write its end to the catalogue: {e}", run.id);
+        eprintln!(
+            "contrail serve: run {}: cannot write its end to the catalogue: {e}",
+            run.id
+        );
     }
     svc.live.end(&run.id);
     svc.live.send(

@@ -15,7 +15,12 @@ pub struct ApiError {
 }
 
 impl ApiError {
-    pub fn new(status: StatusCode, code: &'static str, message: impl Into<String>, hint: impl Into<String>) -> ApiError {
+    pub fn new(
+        status: StatusCode,
+        code: &'static str,
+        message: impl Into<String>,
+        hint: impl Into<String>,
+    ) -> ApiError {
         ApiError {
             status,
             code,
@@ -101,7 +106,9 @@ pub fn check_id(id: &str) -> Result<(), ApiError> {
     let ok = !id.is_empty()
         && id.len() <= 128
         && id.chars().next().is_some_and(|c| c.is_ascii_alphanumeric())
-        && id.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'));
+        && id
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'));
     if ok {
         Ok(())
     } else {
@@ -118,7 +125,17 @@ mod tests {
 
     #[test]
     fn ids_that_could_leave_the_runs_folder_are_refused() {
-        for bad in ["", "..", "../x", "a/b", ".hidden", "a\\b", "a b", "%2e%2e", &"x".repeat(129)] {
+        for bad in [
+            "",
+            "..",
+            "../x",
+            "a/b",
+            ".hidden",
+            "a\\b",
+            "a b",
+            "%2e%2e",
+            &"x".repeat(129),
+        ] {
             assert!(check_id(bad).is_err(), "{bad}");
         }
         for good in ["crossing-0123456789ab", "a", "strip-channel-00ff00ff00ff", "x.y_z"] {

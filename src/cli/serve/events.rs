@@ -30,9 +30,8 @@ fn follow(rx: Receiver<LiveEvent>, only: Option<String>) -> impl Stream<Item = R
             match rx.recv().await {
                 Ok(e) if e.event == "shutdown" => return None,
                 Ok(e) if only.as_deref().is_none_or(|id| id == e.id) => {
-                    let ended = only.is_some()
-                        && e.event == "status"
-                        && e.data["status"].as_str().is_some_and(is_final);
+                    let ended =
+                        only.is_some() && e.event == "status" && e.data["status"].as_str().is_some_and(is_final);
                     return Some((Ok(sse(&e)), (rx, only, ended)));
                 }
                 Ok(_) | Err(RecvError::Lagged(_)) => continue,

@@ -68,7 +68,9 @@ pub fn curve_of(svc: &Service, r: &RunRow) -> (Vec<[f64; 3]>, Vec<usize>) {
 pub async fn curve(State(svc): Svc, Path(id): Path<String>) -> Result<Json<Value>, ApiError> {
     let r = run_or_404(&svc, &id)?;
     let (points, crossings) = curve_of(&svc, &r);
-    Ok(Json(json!({ "id": r.id, "status": r.status, "points": points, "crossings": crossings })))
+    Ok(Json(
+        json!({ "id": r.id, "status": r.status, "points": points, "crossings": crossings }),
+    ))
 }
 
 pub async fn curve_csv(State(svc): Svc, Path(id): Path<String>) -> Result<Response, ApiError> {
@@ -92,7 +94,11 @@ pub async fn curve_svg(State(svc): Svc, Path(id): Path<String>) -> Result<Respon
         let series = Series {
             label: "force".into(),
             points: points.iter().map(|p| (p[1], p[2])).collect(),
-            markers: crossings.iter().filter_map(|&i| points.get(i)).map(|p| (p[1], p[2])).collect(),
+            markers: crossings
+                .iter()
+                .filter_map(|&i| points.get(i))
+                .map(|p| (p[1], p[2]))
+                .collect(),
         };
         line_chart(&file, &title, "displacement", "force", &[series]).map_err(ApiError::internal)?;
         let text = std::fs::read_to_string(&file).map_err(ApiError::internal);
@@ -164,7 +170,8 @@ pub async fn diff(
     let report = tokio::task::spawn_blocking(move || -> Result<Value, ApiError> {
         let ra = Recording::open(&pa).map_err(|e| ApiError::bad(e.to_string(), ""))?;
         let rb = Recording::open(&pb).map_err(|e| ApiError::bad(e.to_string(), ""))?;
-        let d = compare(&ra, &rb, align, tol).map_err(|e| ApiError::bad(e.to_string(), "compare two runs of one scene"))?;
+        let d =
+            compare(&ra, &rb, align, tol).map_err(|e| ApiError::bad(e.to_string(), "compare two runs of one scene"))?;
         serde_json::to_value(d).map_err(ApiError::internal)
     })
     .await

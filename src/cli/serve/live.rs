@@ -116,7 +116,8 @@ impl Live {
                 ..
             } = line
             {
-                run.curve.push([*t, displacement.unwrap_or(*t), force.unwrap_or(f64::NAN)]);
+                run.curve
+                    .push([*t, displacement.unwrap_or(*t), force.unwrap_or(f64::NAN)]);
                 if *new_crossings > 0 {
                     run.crossing_at.push(run.curve.len() - 1);
                 }

@@ -129,8 +129,12 @@ pub fn serve(a: ServeArgs) -> anyhow::Result<ExitCode> {
             .map_err(|e| BadInput(format!("{}: cannot create: {e}", a.data.join(d).display())))?;
     }
     let data = a.data.canonicalize()?;
-    let cat = Catalogue::open(&data.join("catalogue.sqlite"))
-        .map_err(|e| BadInput(format!("{}: cannot open the catalogue: {e}", data.join("catalogue.sqlite").display())))?;
+    let cat = Catalogue::open(&data.join("catalogue.sqlite")).map_err(|e| {
+        BadInput(format!(
+            "{}: cannot open the catalogue: {e}",
+            data.join("catalogue.sqlite").display()
+        ))
+    })?;
     let backend = match a.backend {
         BackendKind::Local => Backend::Local,
         BackendKind::Slurm => Backend::Slurm {

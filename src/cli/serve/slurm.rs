@@ -46,14 +46,20 @@ fn submit(svc: &Service, run: &RunRow) -> Result<String, String> {
         .arg("--parsable")
         .arg(format!("--job-name=contrail-{}", run.id))
         .arg(format!("--chdir={}", svc.data.display()))
-        .arg(format!("--output={}", svc.data.join("runs").join(format!("{}.slurm.out", run.id)).display()))
+        .arg(format!(
+            "--output={}",
+            svc.data.join("runs").join(format!("{}.slurm.out", run.id)).display()
+        ))
         .arg("--cpus-per-task=1")
         .args(sbatch_args)
         .arg(&path)
         .output()
         .map_err(|e| format!("cannot run sbatch: {e}"))?;
     if !out.status.success() {
-        return Err(format!("sbatch failed: {}", String::from_utf8_lossy(&out.stderr).trim()));
+        return Err(format!(
+            "sbatch failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        ));
     }
     let text = String::from_utf8_lossy(&out.stdout);
     let job = text.trim().split(';').next().unwrap_or("").to_string();

@@ -62,10 +62,7 @@ pub fn params_of(sets: &[String]) -> BTreeMap<String, String> {
         .filter_map(|s| s.split_once('='))
         .map(|(k, v)| {
             let v = v.trim();
-            let v = v
-                .strip_prefix('"')
-                .and_then(|x| x.strip_suffix('"'))
-                .unwrap_or(v);
+            let v = v.strip_prefix('"').and_then(|x| x.strip_suffix('"')).unwrap_or(v);
             (k.trim().to_string(), v.to_string())
         })
         .collect()
@@ -91,12 +88,8 @@ fn check_sets(svc: &Service, sets: &[String]) -> Result<(), ApiError> {
 
 /// Parse the scene with its overrides (no mesh is built) and check the service's limits.
 fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool) -> Result<SceneFile, ApiError> {
-    let file = contrail::scene::parse(src, sets).map_err(|e| {
-        ApiError::bad(
-            e.to_string(),
-            "check the scene with `contrail check SCENE --set ...`",
-        )
-    })?;
+    let file = contrail::scene::parse(src, sets)
+        .map_err(|e| ApiError::bad(e.to_string(), "check the scene with `contrail check SCENE --set ...`"))?;
     let mut elements = 0usize;
     for b in &file.bodies {
         match &b.mesh {
@@ -115,7 +108,10 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
     }
     if elements > svc.limits.elements {
         return Err(ApiError::bad(
-            format!("the scene has {elements} elements; this service solves at most {}", svc.limits.elements),
+            format!(
+                "the scene has {elements} elements; this service solves at most {}",
+                svc.limits.elements
+            ),
             "use a coarser mesh, or run it with `contrail run` or on the Slurm backend",
         ));
     }
@@ -125,8 +121,14 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
 fn unknown_scene(name: &str) -> ApiError {
     let names: Vec<&str> = builtin::BUILTINS.iter().map(|b| b.name).collect();
     ApiError::bad(
-        format!("`{}` is not a built-in scene", name.chars().take(80).collect::<String>()),
-        format!("built-in scenes: {}; or send the scene's TOML text as `scene_toml`", names.join(", ")),
+        format!(
+            "`{}` is not a built-in scene",
+            name.chars().take(80).collect::<String>()
+        ),
+        format!(
+            "built-in scenes: {}; or send the scene's TOML text as `scene_toml`",
+            names.join(", ")
+        ),
     )
 }
 
@@ -173,7 +175,11 @@ pub fn check_run(svc: &Service, r: &RunRequest) -> Result<Checked, ApiError> {
                 return Err(ApiError::new(
                     axum::http::StatusCode::PAYLOAD_TOO_LARGE,
                     "too-large",
-                    format!("the scene is {} bytes; at most {} are accepted", text.len(), svc.limits.scene_bytes),
+                    format!(
+                        "the scene is {} bytes; at most {} are accepted",
+                        text.len(),
+                        svc.limits.scene_bytes
+                    ),
                     "use a generated mesh rather than listing nodes",
                 ));
             }
@@ -195,7 +201,11 @@ pub fn check_run(svc: &Service, r: &RunRequest) -> Result<Checked, ApiError> {
     if !builtin {
         store_scene(&svc.data, &scene_ref, &src.text)?;
     }
-    let name = if builtin { scene_ref.clone() } else { id_name(&file.name) };
+    let name = if builtin {
+        scene_ref.clone()
+    } else {
+        id_name(&file.name)
+    };
     let run = planned(&name, &scene_ref, &r.set)?;
     Ok(Checked {
         id: run.id,
@@ -231,7 +241,11 @@ pub fn check_sweep(svc: &Service, r: &SweepRequest) -> Result<(String, Vec<Check
     let runs = expand(&plan).map_err(|e| ApiError::bad(e.to_string(), ""))?;
     if runs.len() > svc.limits.sweep_runs {
         return Err(ApiError::bad(
-            format!("the plan has {} runs; at most {} are accepted", runs.len(), svc.limits.sweep_runs),
+            format!(
+                "the plan has {} runs; at most {} are accepted",
+                runs.len(),
+                svc.limits.sweep_runs
+            ),
             "split the plan",
         ));
     }
@@ -259,7 +273,13 @@ pub fn check_sweep(svc: &Service, r: &SweepRequest) -> Result<(String, Vec<Check
 }
 
 /// Catalogue a checked run (or find it); returns whether it is new (queued now) or re-run.
-pub fn catalogue(svc: &Service, c: &Checked, sweep: Option<&str>, rerun: bool, positions_every: usize) -> Result<bool, ApiError> {
+pub fn catalogue(
+    svc: &Service,
+    c: &Checked,
+    sweep: Option<&str>,
+    rerun: bool,
+    positions_every: usize,
+) -> Result<bool, ApiError> {
     let new = NewRun {
         id: &c.id,
         scene: &c.scene,
@@ -271,7 +291,8 @@ pub fn catalogue(svc: &Service, c: &Checked, sweep: Option<&str>, rerun: bool, p
     };
     let queued = svc.catalogue.insert(&new)? || (rerun && svc.catalogue.requeue(&c.id)?);
     if queued {
-        svc.live.send("status", &c.id, serde_json::json!({ "status": "queued" }));
+        svc.live
+            .send("status", &c.id, serde_json::json!({ "status": "queued" }));
         svc.notify_work();
     }
     Ok(queued)
