@@ -17,7 +17,7 @@ const DISTINCT: usize = 250;
 
 /// The k-th distinct small run.
 fn body(k: usize) -> serde_json::Value {
-    if k % 2 == 0 {
+    if k.is_multiple_of(2) {
         json!({ "scene": "crossing", "set": [format!("stepping.increments={}", 20 + k / 2)] })
     } else {
         json!({ "scene": "block-slide", "set": ["stepping.increments=12", format!("contact.mu={}", 0.1 + 0.001 * k as f64)] })

@@ -78,13 +78,12 @@ pub struct StreamEnd {
 pub fn take_line(svc: &Service, id: &str, line: &str, acc: &mut StreamEnd) {
     match ProgressLine::parse(line) {
         Some(ProgressLine::End { outcome, culprit }) => acc.end = Some((*outcome, culprit)),
-        Some(p) => {
-            if svc.live.progress(id, &p) {
-                if let Ok(text) = serde_json::to_string(&p) {
-                    let _ = svc.catalogue.set_progress(id, &text);
-                }
+        Some(p) if svc.live.progress(id, &p) => {
+            if let Ok(text) = serde_json::to_string(&p) {
+                let _ = svc.catalogue.set_progress(id, &text);
             }
         }
+        Some(_) => {}
         None if acc.text.len() < 64 << 10 => {
             acc.text.push_str(line);
             acc.text.push('\n');
