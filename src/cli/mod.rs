@@ -95,15 +95,16 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
     1
 }
 
-/// Parse the command line; an unknown subcommand that clap has no suggestion for gets ours
-/// (clap's similarity measure misses short ones such as `rn` for `run`).
+/// Parse the command line; an unknown subcommand gets our suggestion where we have one
+/// (clap's similarity measure misses short ones such as `rn` for `run`, or picks `runs`).
 pub fn parse() -> Cli {
     use clap::error::{ContextKind, ContextValue, ErrorKind};
     use clap::CommandFactory;
     match Cli::try_parse() {
         Ok(c) => c,
         Err(mut e) => {
-            if e.kind() == ErrorKind::InvalidSubcommand && e.get(ContextKind::SuggestedSubcommand).is_none() {
+            // ours, when we have one, is the closest by edit distance (clap prefers `runs` for `rn`)
+            if e.kind() == ErrorKind::InvalidSubcommand {
                 let cmd = Cli::command();
                 let typed = match e.get(ContextKind::InvalidSubcommand) {
                     Some(ContextValue::String(s)) => s.clone(),
