@@ -19,7 +19,9 @@ fn solvers(data: &Path, id: &str) -> Vec<u32> {
     let data = data.canonicalize().unwrap();
     let mut out = Vec::new();
     for e in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else { continue };
+        let Ok(pid) = e.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
         let cmd = std::fs::read(e.path().join("cmdline")).unwrap_or_default();
         let state = std::fs::read_to_string(e.path().join("stat")).unwrap_or_default();
         let zombie = state.split_whitespace().nth(2) == Some("Z");
@@ -163,17 +165,29 @@ fn a_solver_killed_with_sigkill_fails_its_run_and_the_service_goes_on() {
     let dir = TempDir::new("svc-abort");
     let data = dir.0.join("data");
     let srv = Server::start(&data, &["--workers", "1"]);
-    let (_, a) = srv.post("/api/runs", &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }));
+    let (_, a) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "strip-channel", "set": ["stepping.increments=400000"] }),
+    );
     let a = a["id"].as_str().unwrap().to_string();
     srv.wait_for(&a, |v| v["progress"]["increment"].as_u64() >= Some(2000), 120);
     let pids = solvers(&data, &a);
     assert_eq!(pids.len(), 1, "one solver process");
-    let _ = std::process::Command::new("kill").args(["-9", &pids[0].to_string()]).status();
+    let _ = std::process::Command::new("kill")
+        .args(["-9", &pids[0].to_string()])
+        .status();
     let ra = srv.wait_ended(&a, 60);
-    assert_eq!((ra["status"].as_str(), ra["failure_kind"].as_str()), (Some("failed"), Some("aborted")), "{ra}");
+    assert_eq!(
+        (ra["status"].as_str(), ra["failure_kind"].as_str()),
+        (Some("failed"), Some("aborted")),
+        "{ra}"
+    );
     let msg = ra["message"].as_str().unwrap();
     assert!(msg.contains("killed by signal 9") && msg.contains("recovered"), "{msg}");
     assert!(Recording::open(&data.join(format!("runs/{a}.mcap"))).is_ok());
-    let (_, b) = srv.post("/api/runs", &json!({ "scene": "crossing", "set": ["stepping.increments=20"] }));
+    let (_, b) = srv.post(
+        "/api/runs",
+        &json!({ "scene": "crossing", "set": ["stepping.increments=20"] }),
+    );
     assert_eq!(srv.wait_ended(b["id"].as_str().unwrap(), 60)["status"], "completed");
 }
