@@ -70,4 +70,20 @@ echo "== interop: rerun rrd verify"
 for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd"; do
     "$VENV/bin/rerun" rrd verify "$f"
 done
+echo "== interop: contrail serve → contrail submit strip-channel --wait → Python mcap over HTTP range requests"
+"$BIN" serve --port 0 --data "$TMP/service" --workers 2 >"$TMP/serve.log" 2>&1 &
+SERVE_PID=$!
+URL=""
+for _ in $(seq 1 50); do
+    URL="$(grep -o 'http://[0-9.:]*' "$TMP/serve.log" || true)"
+    [ -n "$URL" ] && break
+    sleep 0.1
+done
+[ -n "$URL" ] || { echo "contrail serve did not start"; cat "$TMP/serve.log"; exit 1; }
+"$BIN" submit strip-channel --wait --server "$URL" >"$TMP/submit.log" || { cat "$TMP/submit.log"; kill "$SERVE_PID"; exit 1; }
+RUN_ID="$(awk '/^run / { print $2; exit }' "$TMP/submit.log")"
+INCREMENTS="$(awk '/^ended completed after / { print $4; exit }' "$TMP/submit.log")"
+"$VENV/bin/python" .ci/service_mcap.py "$URL" "$RUN_ID" "$INCREMENTS" || { kill "$SERVE_PID"; exit 1; }
+kill -INT "$SERVE_PID"
+wait "$SERVE_PID" || true
 echo "interop: all checks passed"

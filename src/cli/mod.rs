@@ -2,6 +2,7 @@
 
 mod chart;
 mod check;
+mod client;
 mod diff;
 mod export;
 mod inspect;
@@ -13,6 +14,7 @@ mod recover;
 mod replay;
 mod run;
 mod scenes;
+mod serve;
 pub mod signal;
 mod suggest;
 mod summary;
@@ -58,6 +60,16 @@ pub enum Command {
     Sweep(sweep::SweepArgs),
     /// Charts of a sweep index: `pareto` (error vs wall time) and `stability` (pass/fail maps).
     Chart(chart::ChartArgs),
+    /// Serve a run catalogue: HTTP API, live progress, web page (`serve`, then open
+    /// http://127.0.0.1:8717). See docs/service.md.
+    Serve(serve::ServeArgs),
+    /// Send a run (or with --plan a sweep) to a `contrail serve` service.
+    Submit(client::SubmitArgs),
+    /// List the runs of a `contrail serve` service, filtered by scene, status, failure kind
+    /// or parameter values.
+    Runs(client::RunsArgs),
+    /// Download a run's recording from a `contrail serve` service.
+    Fetch(client::FetchArgs),
 }
 
 /// Input the user must fix (exit code 2).
@@ -83,15 +95,16 @@ pub fn exit_code(e: &anyhow::Error) -> u8 {
     1
 }
 
-/// Parse the command line; an unknown subcommand that clap has no suggestion for gets ours
-/// (clap's similarity measure misses short ones such as `rn` for `run`).
+/// Parse the command line; an unknown subcommand gets our suggestion where we have one
+/// (clap's similarity measure misses short ones such as `rn` for `run`, or picks `runs`).
 pub fn parse() -> Cli {
     use clap::error::{ContextKind, ContextValue, ErrorKind};
     use clap::CommandFactory;
     match Cli::try_parse() {
         Ok(c) => c,
         Err(mut e) => {
-            if e.kind() == ErrorKind::InvalidSubcommand && e.get(ContextKind::SuggestedSubcommand).is_none() {
+            // ours, when we have one, is the closest by edit distance (clap prefers `runs` for `rn`)
+            if e.kind() == ErrorKind::InvalidSubcommand {
                 let cmd = Cli::command();
                 let typed = match e.get(ContextKind::InvalidSubcommand) {
                     Some(ContextValue::String(s)) => s.clone(),
@@ -123,6 +136,10 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Recover(a) => recover::recover(a),
         Command::Sweep(a) => sweep::sweep(a),
         Command::Chart(a) => chart::chart(a),
+        Command::Serve(a) => serve::serve(a),
+        Command::Submit(a) => client::submit(a),
+        Command::Runs(a) => client::runs(a),
+        Command::Fetch(a) => client::fetch(a),
         Command::Schema => {
             out::outln!(
                 "{}",

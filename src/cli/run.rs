@@ -13,6 +13,7 @@ use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::vtu_sink::VtuSink;
 use contrail::record::{Fanout, Observer};
 use contrail::solver::{run as solve, SolveError};
+use contrail::study::{outcome_of, Collector, ProgressLine, ProgressSink};
 use std::io::{BufWriter, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -45,6 +46,20 @@ pub struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Write the progress as JSON lines to FILE (`-`: standard output, before the summary):
+    /// one line per converged increment, and the typed outcome (status, failure kind,
+    /// figures, load–displacement curve) as the last line. `contrail serve` reads it.
+    #[arg(long, value_name = "FILE")]
+    pub progress: Option<PathBuf>,
+}
+
+fn progress_sink(path: &Path) -> anyhow::Result<ProgressSink> {
+    let out: Box<dyn std::io::Write + Send> = if path == Path::new("-") {
+        Box::new(std::io::stdout())
+    } else {
+        Box::new(open(path)?)
+    };
+    Ok(ProgressSink::new(out, &path.display().to_string()))
 }
 
 fn open(path: &Path) -> anyhow::Result<BufWriter<std::fs::File>> {
@@ -110,13 +125,29 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         sinks.push(Box::new(Progress::new(problem.settings.stepping.end)));
     }
     let mut tracker = Tracker::default();
+    let mut progress = a.progress.as_deref().map(progress_sink).transpose()?;
+    let mut collector = Collector::default();
+    let started = std::time::Instant::now();
     let result = {
         let mut fan = Fanout {
             sinks: sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect(),
         };
         fan.sinks.push(&mut tracker);
+        if let Some(p) = progress.as_mut() {
+            fan.sinks.push(p);
+            fan.sinks.push(&mut collector);
+        }
         solve(&problem, &info, &mut fan, &stop)
     };
+    drop(sinks);
+    if let Some(p) = progress.as_mut() {
+        let culprit = match &result {
+            Err(SolveError::StepFailed { points, .. }) => points.clone(),
+            _ => Vec::new(),
+        };
+        let outcome = Box::new(outcome_of(&result, collector, &problem, &info, started));
+        p.write(&ProgressLine::End { outcome, culprit })?;
+    }
     let mcap = a.out.iter().find(|p| p.extension().is_some_and(|e| e == "mcap"));
     let mut o = String::new();
     let row = |o: &mut String, k: &str, v: String| o.push_str(&format!("{k:<12} {v}\n"));

@@ -7,10 +7,12 @@
 mod classify;
 mod collect;
 mod kind;
+mod progress;
 
 pub use classify::{classify, FailureEvidence};
 pub use collect::{Collector, ContactLoss, CrossingJump, RunData};
 pub use kind::FailureKind;
+pub use progress::{ProgressLine, ProgressSink};
 
 use crate::record::mcap_sink::{McapOptions, McapSink};
 use crate::record::{Fanout, Observer};
@@ -183,50 +185,63 @@ impl Study {
         let mut fan = Fanout { sinks };
         let result = crate::solver::run(&problem, &info, &mut fan, stop);
         drop(fan);
-        let mut figures = Figures {
-            increments: collector.increments,
-            newton_iterations: collector.newton_iterations,
-            cutbacks: collector.cutbacks,
-            crossings: collector.data.crossings.len(),
-            wall_time_s: 0.0,
-            t_reached: collector.last_t,
-            t_end: problem.settings.stepping.end,
-            dofs: problem.model.dof_count(),
-            transfer: info.transfer.clone(),
-        };
-        let status = match &result {
-            Ok(s) => {
-                figures.t_reached = s.t;
-                Status::Completed
-            }
-            Err(e) => {
-                let (increment, t) = match e {
-                    SolveError::StepFailed {
-                        increment, t, cutbacks, ..
-                    } => {
-                        figures.cutbacks += cutbacks;
-                        (*increment, *t)
-                    }
-                    SolveError::Interrupted { increment, t } => (*increment, *t),
-                    SolveError::Observer(_) => (collector.increments + 1, collector.last_t),
-                };
-                match classify(e, &collector.evidence) {
-                    Some(kind) => Status::Failed {
-                        kind,
-                        increment,
-                        t,
-                        message: e.to_string(),
-                    },
-                    None => Status::Interrupted { increment, t },
+        Ok(outcome_of(&result, collector, &problem, &info, started))
+    }
+}
+
+/// The typed outcome of a finished solve: its status (a failure classified from the error
+/// and the collector's evidence), figures and data. `Study::run` and `contrail run
+/// --progress` both end with it.
+pub fn outcome_of(
+    result: &Result<crate::solver::RunSummary, SolveError>,
+    collector: Collector,
+    problem: &crate::problem::Problem,
+    info: &crate::record::RunInfo,
+    started: Instant,
+) -> StudyOutcome {
+    let mut figures = Figures {
+        increments: collector.increments,
+        newton_iterations: collector.newton_iterations,
+        cutbacks: collector.cutbacks,
+        crossings: collector.data.crossings.len(),
+        wall_time_s: 0.0,
+        t_reached: collector.last_t,
+        t_end: problem.settings.stepping.end,
+        dofs: problem.model.dof_count(),
+        transfer: info.transfer.clone(),
+    };
+    let status = match result {
+        Ok(s) => {
+            figures.t_reached = s.t;
+            Status::Completed
+        }
+        Err(e) => {
+            let (increment, t) = match e {
+                SolveError::StepFailed {
+                    increment, t, cutbacks, ..
+                } => {
+                    figures.cutbacks += cutbacks;
+                    (*increment, *t)
                 }
+                SolveError::Interrupted { increment, t } => (*increment, *t),
+                SolveError::Observer(_) => (collector.increments + 1, collector.last_t),
+            };
+            match classify(e, &collector.evidence) {
+                Some(kind) => Status::Failed {
+                    kind,
+                    increment,
+                    t,
+                    message: e.to_string(),
+                },
+                None => Status::Interrupted { increment, t },
             }
-        };
-        figures.wall_time_s = started.elapsed().as_secs_f64();
-        Ok(StudyOutcome {
-            status,
-            figures,
-            data: collector.data,
-        })
+        }
+    };
+    figures.wall_time_s = started.elapsed().as_secs_f64();
+    StudyOutcome {
+        status,
+        figures,
+        data: collector.data,
     }
 }
 

@@ -1,0 +1,26 @@
+//! The web page: one HTML file, its script and its style sheet, embedded in the binary (no
+//! build step). The page reads the JSON API and follows `/api/events`.
+
+use axum::http::header;
+use axum::response::IntoResponse;
+
+pub async fn index() -> impl IntoResponse {
+    (
+        [(header::CONTENT_TYPE, "text/html; charset=utf-8")],
+        include_str!("web/index.html"),
+    )
+}
+
+pub async fn script() -> impl IntoResponse {
+    (
+        [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
+        include_str!("web/app.js"),
+    )
+}
+
+pub async fn style() -> impl IntoResponse {
+    (
+        [(header::CONTENT_TYPE, "text/css; charset=utf-8")],
+        include_str!("web/style.css"),
+    )
+}
