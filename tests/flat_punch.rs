@@ -16,7 +16,7 @@
 //! (the first sliding increment failed at every step down to Δt/1024 before the stick of the
 //! last increment was taken as the first correction's elastic predictor); the mean ratio
 //! within 3 % of μ; the oscillation smaller on the finer mesh. The 96 × 32 mesh is the full
-//! study (`--include-ignored`). Runs in release builds only (CI's release tier).
+//! study (`--include-ignored`), with the quarter step too. Runs in release builds only (CI's release tier).
 
 mod common;
 
@@ -35,11 +35,11 @@ fn sliding_ratio(m: &Memory) -> (f64, f64) {
     (mean, (hi - lo) / mean)
 }
 
-fn study(meshes: &[&str]) {
+fn study(meshes: &[&str], steps: &[&str]) {
     for mu in [0.2, 0.5] {
         let mut last_spread = f64::INFINITY;
         for mesh in meshes {
-            for step in ["stepping.increments=60", "stepping.increments=120"] {
+            for &step in steps {
                 let m_set = format!("contact.mu={mu}");
                 let (s, m) = common::solve_ok(&common::scene("flat-punch", &[mesh, step, &m_set]));
                 let (mean, spread) = sliding_ratio(&m);
@@ -60,15 +60,25 @@ fn study(meshes: &[&str]) {
 #[test]
 #[cfg_attr(debug_assertions, ignore = "release tier")]
 fn flat_punch_slides_at_mu_on_coarse_and_medium_meshes_and_half_steps() {
-    study(&["body.block.mesh.elements=[24,8]", "body.block.mesh.elements=[48,16]"]);
+    study(
+        &["body.block.mesh.elements=[24,8]", "body.block.mesh.elements=[48,16]"],
+        &["stepping.increments=60", "stepping.increments=120"],
+    );
 }
 
 #[test]
 #[ignore = "full study"]
 fn flat_punch_full_refinement_study() {
-    study(&[
-        "body.block.mesh.elements=[24,8]",
-        "body.block.mesh.elements=[48,16]",
-        "body.block.mesh.elements=[96,32]",
-    ]);
+    study(
+        &[
+            "body.block.mesh.elements=[24,8]",
+            "body.block.mesh.elements=[48,16]",
+            "body.block.mesh.elements=[96,32]",
+        ],
+        &[
+            "stepping.increments=60",
+            "stepping.increments=120",
+            "stepping.increments=240",
+        ],
+    );
 }

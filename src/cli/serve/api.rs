@@ -72,6 +72,7 @@ pub fn app(svc: Arc<Service>) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(not_allowed)
         .layer(axum::extract::DefaultBodyLimit::max(limit))
+        .layer(axum::middleware::from_fn_with_state(svc.clone(), refuse_oversized))
         .layer(axum::middleware::from_fn_with_state(svc.clone(), token_check))
         .with_state(svc)
 }
@@ -100,6 +101,37 @@ fn same(a: &[u8], b: &[u8]) -> bool {
 
 /// With `--token`, every request carries it: `Authorization: Bearer TOKEN`, or `?token=`
 /// (for links and the browser's event streams).
+/// Bodies read to their end before an oversized request is refused, at most this many
+/// times the body limit: a client still writing its body then reads the 413 instead of
+/// a broken pipe. Larger bodies are refused at once and their connection closed.
+const DRAIN_FACTOR: u64 = 16;
+
+/// A request whose declared length exceeds the body limit gets a JSON 413 after its body is
+/// read and dropped (up to [`DRAIN_FACTOR`] times the limit).
+async fn refuse_oversized(State(svc): Svc, req: Request, next: Next) -> Response {
+    use futures_util::StreamExt;
+    let limit = svc.limits.body_bytes as u64;
+    let declared = req
+        .headers()
+        .get(axum::http::header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.parse::<u64>().ok());
+    let Some(len) = declared.filter(|&n| n > limit) else {
+        return next.run(req).await;
+    };
+    if len <= limit.saturating_mul(DRAIN_FACTOR) {
+        let mut body = req.into_body().into_data_stream();
+        while let Some(Ok(_)) = body.next().await {}
+    }
+    ApiError::new(
+        StatusCode::PAYLOAD_TOO_LARGE,
+        "too-large",
+        format!("the request body is {len} bytes; at most {limit} are accepted"),
+        "use a generated mesh rather than listing nodes",
+    )
+    .into_response()
+}
+
 async fn token_check(State(svc): Svc, req: Request, next: Next) -> Response {
     let Some(token) = &svc.token else {
         return next.run(req).await;
