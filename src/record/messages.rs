@@ -2,7 +2,7 @@
 //! node positions, and the per-increment envelopes of contact points and crossings. Their
 //! JSON Schemas sit in `schemas/` next to those of the solver records.
 
-use super::real::{Real, Real2};
+use super::real::{Real, Real2, Real2s};
 use super::{ContactPointRecord, CrossingRecord};
 use crate::model::{Master, Model, RigidShape};
 use schemars::JsonSchema;
@@ -66,7 +66,7 @@ pub struct ModelRecord {
     pub description: String,
     /// Reference coordinates of the nodes.
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub nodes: Vec<[f64; 2]>,
     /// Quadrilaterals: four node ids, counter-clockwise.
     pub elements: Vec<[usize; 4]>,
@@ -198,7 +198,8 @@ impl ModelRecord {
     }
 }
 
-/// A contact slave point at the end of a converged increment (channel `/contact`): the
+/// A contact slave point at the end of a converged increment (channel `/contact` of formats
+/// 1 and 2, read by this build; format 3 writes [`super::arrays::ContactArrays`]): the
 /// increment and load level, then the fields of the solver's contact-point record.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct ContactPointMessage {
@@ -207,16 +208,6 @@ pub struct ContactPointMessage {
     pub t: f64,
     #[serde(flatten)]
     pub point: ContactPointRecord,
-}
-
-/// [`ContactPointMessage`] as written: the same JSON, borrowing the solver's record.
-#[derive(Serialize)]
-pub(crate) struct ContactPointMessageRef<'a> {
-    pub increment: usize,
-    #[serde(with = "Real")]
-    pub t: f64,
-    #[serde(flatten)]
-    pub point: &'a ContactPointRecord,
 }
 
 /// A crossing of a master-segment boundary in a converged increment (channel `/crossing`).
@@ -229,6 +220,16 @@ pub struct CrossingMessage {
     pub crossing: CrossingRecord,
 }
 
+/// [`CrossingMessage`] as written: the same JSON, borrowing the solver's record.
+#[derive(Serialize)]
+pub(crate) struct CrossingMessageRef<'a> {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    #[serde(flatten)]
+    pub crossing: &'a CrossingRecord,
+}
+
 /// Current positions after a converged increment (channel `/positions`; every increment, or
 /// every N-th and the last one with `--positions-every N`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -238,53 +239,28 @@ pub struct PositionsMessage {
     pub t: f64,
     /// Current coordinates `X + u` of every node.
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub nodes: Vec<[f64; 2]>,
     /// Translation of each rigid body (same order as the model's `rigid`).
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub rigid_offsets: Vec<[f64; 2]>,
-}
-
-mod real_pairs {
-    use super::super::real::Real2;
-    use serde::ser::SerializeSeq;
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    struct P<'a>(&'a [f64; 2]);
-    impl serde::Serialize for P<'_> {
-        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            Real2::serialize(self.0, s)
-        }
-    }
-    #[derive(Deserialize)]
-    struct D(#[serde(with = "Real2")] [f64; 2]);
-
-    pub fn serialize<S: Serializer>(v: &[[f64; 2]], s: S) -> Result<S::Ok, S::Error> {
-        let mut seq = s.serialize_seq(Some(v.len()))?;
-        for p in v {
-            seq.serialize_element(&P(p))?;
-        }
-        seq.end()
-    }
-    pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<[f64; 2]>, De::Error> {
-        let v: Vec<D> = Vec::deserialize(d)?;
-        Ok(v.into_iter().map(|D(p)| p).collect())
-    }
 }
 
 mod real_polylines {
     use serde::ser::SerializeSeq;
     use serde::{Deserialize, Deserializer, Serializer};
 
+    use super::super::real::Real2s;
+
     struct L<'a>(&'a [[f64; 2]]);
     impl serde::Serialize for L<'_> {
         fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            super::real_pairs::serialize(self.0, s)
+            Real2s::serialize(self.0, s)
         }
     }
     #[derive(Deserialize)]
-    struct D(#[serde(with = "super::real_pairs")] Vec<[f64; 2]>);
+    struct D(#[serde(with = "Real2s")] Vec<[f64; 2]>);
 
     pub fn serialize<S: Serializer>(v: &[Vec<[f64; 2]>], s: S) -> Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(Some(v.len()))?;

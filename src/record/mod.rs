@@ -1,11 +1,16 @@
 //! What the solver reports, and to whom: record types (serde + JSON Schema) and the
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
+pub mod arrays;
 pub mod atomic_file;
 pub mod background;
 pub mod csv;
 mod failure;
+pub mod format3;
+pub mod foxglove;
+mod json_text;
 pub mod jsonl;
+pub mod mcap_out;
 pub mod mcap_sink;
 pub mod messages;
 mod observer;
