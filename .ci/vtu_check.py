@@ -13,6 +13,7 @@ Usage: python .ci/vtu_check.py RUN.pvd RUN.mcap RUN.csv [--every N] [--fields|--
 """
 
 import argparse
+import base64
 import csv
 import json
 import pathlib
@@ -42,6 +43,9 @@ def read_mcap(path):
             if channel.topic == "/model":
                 model = doc
             else:
+                if isinstance(doc["nodes"], str):
+                    # format 3: little-endian doubles, base64
+                    doc["nodes"] = np.frombuffer(base64.b64decode(doc["nodes"]), "<f8").reshape(-1, 2)
                 positions[doc["increment"]] = doc
     return model, positions
 

@@ -43,9 +43,15 @@ fn bases() -> &'static [Vec<u8>; 2] {
         let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", opts).unwrap();
         let _ = contrail::solver::run(&model, &info, &mut sink, &AtomicBool::new(false));
         let now = sink.into_inner().unwrap().into_inner();
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/recordings/golden/format2/strip-channel.mcap");
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/recordings/golden/format2/strip-channel.mcap"
+        );
         let older = std::fs::read(path).unwrap();
-        assert_eq!(Recording::from_bytes(&older, "f2").unwrap().metadata["format_version"], "2");
+        assert_eq!(
+            Recording::from_bytes(&older, "f2").unwrap().metadata["format_version"],
+            "2"
+        );
         [now, older]
     })
 }

@@ -5,7 +5,7 @@
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
 use crate::record::arrays::{ContactArrays, PressureArrays};
-use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
 use crate::record::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
@@ -359,6 +359,7 @@ pub(crate) struct Builder {
     /// Format-3 messages, made into records once the model is known.
     contact_arrays: Vec<ContactArrays>,
     pressure_arrays: Vec<PressureArrays>,
+    packed_positions: Vec<PackedPositions>,
     start_time: u64,
     increment_times: BTreeMap<usize, u64>,
 }
@@ -401,6 +402,9 @@ impl Builder {
                 self.contact.entry(m.increment).or_default().push(m.point);
             }
             schemas::CROSSING => self.crossings.push(parse(topic, seq, data)?),
+            schemas::POSITIONS if schema == schemas::PACKED_POSITIONS => {
+                self.packed_positions.push(parse(topic, seq, data)?);
+            }
             schemas::POSITIONS => self.positions.push(parse(topic, seq, data)?),
             schemas::LOG => self.logs.push(parse(topic, seq, data)?),
             schemas::OUTCOME => self.outcome = Some(parse(topic, seq, data)?),
@@ -419,6 +423,10 @@ impl Builder {
         for a in std::mem::take(&mut self.contact_arrays) {
             let points = a.records(model).map_err(|e| (schemas::CONTACT.to_string(), e))?;
             self.contact.entry(a.increment).or_default().extend(points);
+        }
+        for p in std::mem::take(&mut self.packed_positions) {
+            self.positions
+                .push(p.unpack().map_err(|e| (schemas::POSITIONS.to_string(), e))?);
         }
         for a in std::mem::take(&mut self.pressure_arrays) {
             self.pressure

@@ -8,7 +8,7 @@
 use super::arrays::{ContactColumns, PressureColumns};
 use super::foxglove::{self, SceneEncoder, SceneView};
 use super::mcap_out::{McapOut, OutError};
-use super::messages::{ModelRecord, PositionsMessage};
+use super::messages::{ModelRecord, PackedPositions, PositionsMessage};
 use super::pressure::PressureRecord;
 use super::schemas;
 use super::{ContactPointRecord, LogRecord};
@@ -98,7 +98,7 @@ impl Format3Writer {
         for p in pressure {
             out.put(schemas::PRESSURE, &PressureColumns(p))?;
         }
-        out.put(schemas::POSITIONS, positions)
+        out.put(schemas::POSITIONS, &PackedPositions::pack(positions))
     }
 
     /// The Foxglove scene of an increment.

@@ -8,7 +8,7 @@
 
 use super::arrays::{ContactArrays, PressureArrays};
 use super::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
-use super::messages::{CrossingMessage, ModelRecord, PositionsMessage};
+use super::messages::{CrossingMessage, ModelRecord, PackedPositions};
 use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use std::path::Path;
 
@@ -82,12 +82,15 @@ pub const FORMAT_VERSION: &str = "3";
 /// Format versions this build reads (1: one `/contact` message per point of every
 /// increment; 2: points that stay out of reach left out, see
 /// [`crate::record::mcap_sink::OutOfReach`]; 3: `/contact` and `/pressure` as one message
-/// of arrays per increment and pair, Foxglove channels beside).
+/// of arrays per increment and pair, `/positions` packed, Foxglove channels beside).
 pub const READABLE_VERSIONS: &[&str] = &["1", "2", "3"];
 /// Schema names of the format-3 `/contact` and `/pressure` messages (formats 1 and 2 have
 /// `contrail.ContactPoint` and `contrail.Pressure`, one point or one profile of objects).
 pub const CONTACT_ARRAYS: &str = "contrail.ContactArrays";
 pub const PRESSURE_ARRAYS: &str = "contrail.PressureArrays";
+/// Schema name of the format-3 `/positions` message (node coordinates packed as binary;
+/// formats 1 and 2 have `contrail.Positions`, a list of pairs).
+pub const PACKED_POSITIONS: &str = "contrail.PackedPositions";
 
 /// Every channel, in the order they are registered in a recording.
 pub const CHANNELS: &[ChannelSpec] = &[
@@ -128,10 +131,10 @@ pub const CHANNELS: &[ChannelSpec] = &[
     },
     ChannelSpec {
         topic: POSITIONS,
-        schema_name: "contrail.Positions",
+        schema_name: PACKED_POSITIONS,
         file: "positions.schema.json",
-        description: "current node coordinates and rigid-body offsets (every N-th increment and the last)",
-        schema: Source::Generated(|| schemars::schema_for!(PositionsMessage)),
+        description: "current node coordinates (little-endian doubles, base64) and rigid-body offsets (every N-th increment and the last)",
+        schema: Source::Generated(|| schemars::schema_for!(PackedPositions)),
     },
     ChannelSpec {
         topic: LOG,
