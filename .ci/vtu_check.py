@@ -13,7 +13,6 @@ Usage: python .ci/vtu_check.py RUN.pvd RUN.mcap RUN.csv [--every N] [--fields|--
 """
 
 import argparse
-import base64
 import csv
 import json
 import pathlib
@@ -44,8 +43,9 @@ def read_mcap(path):
                 model = doc
             else:
                 if isinstance(doc["nodes"], str):
-                    # format 3: little-endian doubles, base64
-                    doc["nodes"] = np.frombuffer(base64.b64decode(doc["nodes"]), "<f8").reshape(-1, 2)
+                    # format 3: byte-shuffled doubles in hexadecimal (schemas/positions.schema.json)
+                    planes = np.frombuffer(bytes.fromhex(doc["nodes"]), np.uint8).reshape(8, -1)
+                    doc["nodes"] = planes.T.copy().view("<f8").reshape(-1, 2)
                 positions[doc["increment"]] = doc
     return model, positions
 

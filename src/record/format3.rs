@@ -98,7 +98,9 @@ impl Format3Writer {
         for p in pressure {
             out.put(schemas::PRESSURE, &PressureColumns(p))?;
         }
-        out.put(schemas::POSITIONS, &PackedPositions::pack(positions))
+        out.put_with(schemas::POSITIONS, |buf, _| {
+            PackedPositions::write_json(buf, positions).map_err(OutError::from)
+        })
     }
 
     /// The Foxglove scene of an increment.
