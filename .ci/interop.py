@@ -20,7 +20,8 @@ import jsonschema
 from mcap.reader import make_reader
 
 TOPICS = {"/model", "/increment", "/iteration", "/contact", "/crossing", "/positions", "/pressure", "/log", "/outcome"}
-FOXGLOVE = {"/foxglove/log": "foxglove.Log", "/foxglove/scene": "foxglove.SceneUpdate"}
+FOXGLOVE = {"/foxglove/log": "foxglove.Log", "/foxglove/scene": "foxglove.SceneUpdate",
+            "/foxglove/reference": "foxglove.SceneUpdate"}
 CONTACT_ARRAYS = ["slave", "segment", "previous_segment", "xi", "xi_anchor", "gap", "normal_force",
                   "trial_traction", "traction", "state", "crossing", "position", "contact_point",
                   "normal", "tangent"]

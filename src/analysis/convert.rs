@@ -68,6 +68,7 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
     let mut format = Format3Writer::new(&r.model, r.scene(), true);
     let mut scenes = 0;
     if stride > 0 {
+        format.reference(&mut out)?;
         let offsets = vec![[0.0; 2]; r.model.rigid.len()];
         let view = SceneView {
             increment: 0,

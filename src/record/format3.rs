@@ -103,6 +103,15 @@ impl Format3Writer {
         })
     }
 
+    /// The reference mesh for Foxglove (once, at the start).
+    pub fn reference<W: Write + Seek>(&mut self, out: &mut McapOut<W>) -> Result<(), OutError> {
+        let scene = &self.scene;
+        out.put_with(schemas::FOXGLOVE_REFERENCE, |buf, now| {
+            scene.write_reference(buf, now);
+            Ok(())
+        })
+    }
+
     /// The Foxglove scene of an increment.
     pub fn scene<W: Write + Seek>(&mut self, out: &mut McapOut<W>, view: &SceneView) -> Result<(), OutError> {
         let scene = &self.scene;

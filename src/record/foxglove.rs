@@ -2,12 +2,15 @@
 //! in Foxglove (or Lichtblick) shows the log and the model without hand work:
 //!
 //! - `/foxglove/log` (`foxglove.Log`): every `/log` message, with its level;
-//! - `/foxglove/scene` (`foxglove.SceneUpdate`): the reference and the deformed mesh (element
-//!   edges as a line list), the rigid surfaces (line strips, moved by their prescribed
-//!   translation) and the contact slave points within reach (spheres coloured by state: the
-//!   colours of the rerun view). The model lies in the plane z = 0, x right and y up as in the
-//!   scene; coordinates are written in single precision (display data: the exact values are
-//!   on `/positions` and `/contact`).
+//! - `/foxglove/reference` (`foxglove.SceneUpdate`, once, at the start): the reference mesh
+//!   (element edges as a line list). Foxglove shows the last message of each topic before the
+//!   time it seeks to, so a static entity needs only one message;
+//! - `/foxglove/scene` (`foxglove.SceneUpdate`): the deformed mesh, the rigid surfaces (line
+//!   segments, moved by their prescribed translation), the contact slave points within reach
+//!   (spheres coloured by state: the colours of the rerun view) and a label with the increment
+//!   and load level. The model lies in the plane z = 0, x right and y up as in the scene;
+//!   coordinates are written in single precision (display data: the exact values are on
+//!   `/positions` and `/contact`).
 //!
 //! The messages are JSON against the JSON Schemas of the `@foxglove/schemas` package
 //! (`.ci/interop.sh` validates them); those schemas are embedded in the recording as they are
@@ -119,6 +122,14 @@ impl SceneEncoder {
         }
     }
 
+    /// Append the reference mesh (`/foxglove/reference`), logged at `time_ns`.
+    pub fn write_reference(&self, out: &mut Vec<u8>, time_ns: u64) {
+        raw(out, "{\"deletions\":[],\"entities\":[");
+        entity(out, "reference mesh", time_ns, "[]");
+        primitives(out, &[("lines", &self.reference)]);
+        raw(out, "]}");
+    }
+
     /// Append the scene at `increment` (load level `t`, logged at `time_ns`): current node
     /// coordinates `nodes`, rigid offsets, and the contact points of the increment.
     pub fn write(&self, out: &mut Vec<u8>, view: &SceneView, time_ns: u64) {
@@ -127,24 +138,8 @@ impl SceneEncoder {
             "[{{\"key\":\"increment\",\"value\":\"{}\"}},{{\"key\":\"t\",\"value\":\"{}\"}}]",
             view.increment, view.t
         );
-        let entity = |out: &mut Vec<u8>, id: &str| {
-            raw(out, "{\"timestamp\":");
-            time(out, time_ns);
-            raw(out, ",\"frame_id\":\"");
-            raw(out, FRAME);
-            raw(out, "\",\"id\":\"");
-            raw(out, id);
-            raw(
-                out,
-                "\",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":",
-            );
-            raw(out, &meta);
-        };
-        // reference mesh
-        entity(out, "reference mesh");
-        primitives(out, &[("lines", &self.reference)]);
+        let entity = |out: &mut Vec<u8>, id: &str| entity(out, id, time_ns, &meta);
         // deformed mesh
-        raw(out, ",");
         entity(out, "mesh");
         let mut lines = Vec::new();
         line_list(&mut lines, view.nodes, &self.indices, MESH, 1.5);
@@ -247,6 +242,21 @@ pub struct SceneView<'a> {
     /// Translation of each rigid body.
     pub rigid_offsets: &'a [[f64; 2]],
     pub contact: &'a [ScenePoint],
+}
+
+/// Append the start of a scene entity (up to its primitives).
+fn entity(out: &mut Vec<u8>, id: &str, time_ns: u64, metadata: &str) {
+    raw(out, "{\"timestamp\":");
+    time(out, time_ns);
+    raw(out, ",\"frame_id\":\"");
+    raw(out, FRAME);
+    raw(out, "\",\"id\":\"");
+    raw(out, id);
+    raw(
+        out,
+        "\",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":",
+    );
+    raw(out, metadata);
 }
 
 /// Append a line list primitive through `nodes` with the given `"indices":[…]` text.

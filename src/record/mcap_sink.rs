@@ -270,6 +270,7 @@ impl<W: Write + Seek> Observer for McapSink<W> {
                 if self.scene_stride == 0 {
                     return Ok(());
                 }
+                format.reference(&mut self.out)?;
                 let offsets: Vec<[f64; 2]> = model.rigid.iter().map(|r| r.offset(0.0)).collect();
                 let view = SceneView {
                     increment: 0,

@@ -72,6 +72,7 @@ pub const OUTCOME: &str = "/outcome";
 pub const PRESSURE: &str = "/pressure";
 pub const FOXGLOVE_LOG: &str = "/foxglove/log";
 pub const FOXGLOVE_SCENE: &str = "/foxglove/scene";
+pub const FOXGLOVE_REFERENCE: &str = "/foxglove/reference";
 
 /// MCAP header profile of a contrail recording.
 pub const PROFILE: &str = "contrail";
@@ -165,10 +166,17 @@ pub const CHANNELS: &[ChannelSpec] = &[
         schema: Source::Published(FOXGLOVE_LOG_SCHEMA),
     },
     ChannelSpec {
+        topic: FOXGLOVE_REFERENCE,
+        schema_name: "foxglove.SceneUpdate",
+        file: "foxglove/foxglove.SceneUpdate.json",
+        description: "the reference mesh for Foxglove's 3D panel, once at the start (plane z = 0, y up)",
+        schema: Source::Published(FOXGLOVE_SCENE_SCHEMA),
+    },
+    ChannelSpec {
         topic: FOXGLOVE_SCENE,
         schema_name: "foxglove.SceneUpdate",
         file: "foxglove/foxglove.SceneUpdate.json",
-        description: "the model for Foxglove's 3D panel: reference and deformed mesh, rigid surfaces, contact points coloured by state (plane z = 0, y up)",
+        description: "the model for Foxglove's 3D panel at the increments with a scene: deformed mesh, rigid surfaces, contact points coloured by state, a label (plane z = 0, y up)",
         schema: Source::Published(FOXGLOVE_SCENE_SCHEMA),
     },
 ];
