@@ -204,7 +204,8 @@ impl SceneEncoder {
 
     fn contact_spheres(&self, contact: &[ScenePoint]) -> Vec<u8> {
         let mut out = Vec::new();
-        for p in contact.iter().filter(|p| p.in_reach) {
+        // a point paired with a segment but without a projection has a NaN position
+        for p in (contact.iter()).filter(|p| p.in_reach && p.position.iter().all(|x| x.is_finite())) {
             let mu = self.mu.get(p.pair).copied().unwrap_or(0.0);
             sphere(&mut out, p.position, self.point_size, point_colour(p.state, mu));
         }
@@ -218,7 +219,8 @@ pub struct ScenePoint {
     pub pair: usize,
     pub position: [f64; 2],
     pub state: ContactState,
-    /// It has a master segment within reach (points out of reach are not drawn).
+    /// It has a master segment within reach (points out of reach are not drawn, nor points
+    /// without a finite position).
     pub in_reach: bool,
 }
 
@@ -321,4 +323,96 @@ fn primitives(out: &mut Vec<u8>, lists: &[(&str, &[u8])]) {
         raw(out, "]");
     }
     raw(out, "}");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn model() -> ModelRecord {
+        let (_, problem) = crate::load_scene("strip-channel", &[]).unwrap();
+        ModelRecord::new(&problem.model, 1.0)
+    }
+
+    fn point(pair: usize, position: [f64; 2], state: ContactState, in_reach: bool) -> ScenePoint {
+        ScenePoint {
+            pair,
+            position,
+            state,
+            in_reach,
+        }
+    }
+
+    #[test]
+    fn a_scene_has_the_mesh_the_rigid_surfaces_and_the_points_within_reach() {
+        let m = model();
+        let enc = SceneEncoder::new(&m);
+        let contact = [
+            point(0, [f64::NAN, f64::NAN], ContactState::Open, true),
+            point(1, [1.0, -0.5], ContactState::Slip, true),
+            point(1, [2.0, 0.0], ContactState::Open, false),
+            point(1, [3.0, 0.0], ContactState::Stick, true),
+        ];
+        let view = SceneView {
+            increment: 7,
+            t: 0.25,
+            nodes: &m.nodes,
+            rigid_offsets: &[[0.0, 0.0]],
+            contact: &contact,
+        };
+        let mut out = Vec::new();
+        enc.write(&mut out, &view, 1_700_000_000_000_000_123);
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        let entities = v["entities"].as_array().unwrap();
+        let ids: Vec<&str> = entities.iter().map(|e| e["id"].as_str().unwrap()).collect();
+        assert_eq!(ids, ["mesh", "rigid", "contact points", "label"]);
+        let mesh = &entities[0]["lines"][0];
+        assert_eq!(mesh["points"].as_array().unwrap().len(), m.nodes.len());
+        assert_eq!(mesh["indices"].as_array().unwrap().len(), 2 * m.edges().len());
+        assert_eq!(mesh["points"][1]["y"], m.nodes[1][1] as f32 as f64);
+        let spheres = entities[2]["spheres"].as_array().unwrap();
+        assert_eq!(
+            spheres.len(),
+            2,
+            "not the point without a position, nor the one out of reach"
+        );
+        assert_eq!(spheres[0]["color"]["r"], 0.882, "slip is orange");
+        assert_eq!(entities[0]["timestamp"]["nsec"], 123);
+        assert_eq!(entities[3]["texts"][0]["text"], "increment 7, t = 0.25");
+        for e in entities {
+            for list in [
+                "arrows",
+                "cubes",
+                "spheres",
+                "cylinders",
+                "lines",
+                "triangles",
+                "texts",
+                "models",
+            ] {
+                assert!(e[list].is_array(), "{list}");
+            }
+        }
+        let mut reference = Vec::new();
+        enc.write_reference(&mut reference, 0);
+        let r: serde_json::Value = serde_json::from_slice(&reference).unwrap();
+        assert_eq!(r["entities"][0]["id"], "reference mesh");
+    }
+
+    #[test]
+    fn a_log_message_has_foxglove_levels() {
+        let rec = LogRecord {
+            level: LogLevel::Warning,
+            increment: 3,
+            t: 0.5,
+            message: "cut back \"twice\"".into(),
+        };
+        let mut out = Vec::new();
+        log(&mut out, &rec, "crossing", 2_000_000_001);
+        let v: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(v["level"], 3);
+        assert_eq!(v["timestamp"]["sec"], 2);
+        assert_eq!(v["message"], "increment 3 (t = 0.5): cut back \"twice\"");
+        assert_eq!(v["name"], "contrail crossing");
+    }
 }
