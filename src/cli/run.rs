@@ -8,7 +8,7 @@ use contrail::format::{compact_list, plain};
 use contrail::record::background::Background;
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink, SceneEvery};
+use contrail::record::mcap_sink::{ChunkCompression, Iterations, McapOptions, McapSink, SceneEvery};
 use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::vtu_sink::VtuSink;
 use contrail::record::{Fanout, Observer};
@@ -43,6 +43,10 @@ pub struct RunArgs {
     /// written; readers restore them).
     #[arg(long)]
     pub all_points: bool,
+    /// Which Newton iterations an `.mcap` recording writes on `/iteration`: all (default) or
+    /// those of failed attempts only.
+    #[arg(long, value_enum, value_name = "WHICH", default_value_t = Iterations::All)]
+    pub iterations: Iterations,
     #[command(flatten)]
     pub foxglove: SceneArgs,
     /// In a `.pvd` series, write every N-th increment (and the last).
@@ -100,6 +104,7 @@ fn sink(path: &Path, a: &RunArgs) -> anyhow::Result<Box<dyn Observer>> {
                 compression: a.compression,
                 compression_level: a.compression_level,
                 thin_out_of_reach: !a.all_points,
+                iterations: a.iterations,
                 scene: a.foxglove.scene_every,
                 ..McapOptions::default()
             };

@@ -42,6 +42,22 @@ pub struct McapOptions {
     pub thin_out_of_reach: bool,
     /// Which increments get a Foxglove scene (`/foxglove/scene`).
     pub scene: SceneEvery,
+    /// Which Newton iterations go on `/iteration`.
+    pub iterations: Iterations,
+}
+
+/// Which Newton iterations are written on `/iteration`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Iterations {
+    /// Every iteration, as it happens (default: on the seed's benchmark the iterations of
+    /// converged attempts are 4 % of the file and of the writer's work, see
+    /// `docs/recording.md`).
+    #[default]
+    All,
+    /// Only the iterations of attempts that failed (cut-backs, retries, the failure), written
+    /// at the end of their increment; the residuals of a converged attempt stay on
+    /// `/increment`.
+    Failed,
 }
 
 /// Which increments get a Foxglove scene (besides the reference configuration at the start
@@ -91,6 +107,7 @@ impl Default for McapOptions {
             message_indexes: true,
             thin_out_of_reach: true,
             scene: SceneEvery::default(),
+            iterations: Iterations::default(),
         }
     }
 }
@@ -121,6 +138,8 @@ pub struct McapSink<W: Write + Seek> {
     /// The model's pressure layout, worked out at the first increment.
     pressure_layout: Option<PressureLayout>,
     last: Option<Last>,
+    /// Iterations of the increment under way (with `Iterations::Failed`).
+    pending_iterations: Vec<IterationRecord>,
 }
 
 /// Called at `finish` with the output and whether everything was written.
@@ -170,6 +189,7 @@ impl<W: Write + Seek> McapSink<W> {
             scene_stride: 0,
             pressure_layout: None,
             last: None,
+            pending_iterations: Vec::new(),
         })
     }
 
@@ -286,6 +306,10 @@ impl<W: Write + Seek> Observer for McapSink<W> {
     }
 
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
+        if self.opts.iterations == Iterations::Failed {
+            self.pending_iterations.push(rec.clone());
+            return Ok(());
+        }
         self.out.put(schemas::ITERATION, rec).map_err(|e| self.err(e))
     }
 
@@ -303,7 +327,12 @@ impl<W: Write + Seek> Observer for McapSink<W> {
     }
 
     fn finish(&mut self, outcome: &Outcome) -> Result<(), ObserverError> {
-        let last = self.flush_last();
+        // the iterations of the increment that did not converge
+        let mut last = Ok(());
+        for rec in std::mem::take(&mut self.pending_iterations) {
+            last = last.and(self.out.put(schemas::ITERATION, &rec));
+        }
+        let last = last.and(self.flush_last());
         let r = self.out.put(schemas::OUTCOME, outcome);
         let written = last.and(r);
         let (out, result) = match self.out.finish() {
@@ -331,6 +360,13 @@ impl<W: Write + Seek> Observer for McapSink<W> {
 
 impl<W: Write + Seek> McapSink<W> {
     fn write_increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), OutError> {
+        // with `Iterations::Failed`: the attempts before the converged one
+        let converged = self.pending_iterations.iter().map(|i| i.attempt).max();
+        for it in std::mem::take(&mut self.pending_iterations) {
+            if Some(it.attempt) != converged || it.increment != rec.increment {
+                self.out.put(schemas::ITERATION, &it)?;
+            }
+        }
         self.out.put(schemas::INCREMENT, rec)?;
         let every = self.opts.positions_every.max(1);
         let positions_now = rec.increment.is_multiple_of(every);
