@@ -74,6 +74,9 @@ pub struct McapOut<W: Write + Seek> {
     channel_ids: Vec<u16>,
     sequence: Vec<u32>,
     clock: Clock,
+    /// A time every message gets until [`McapOut::release_time`] (the messages of one
+    /// increment share their time: cheaper, and they compress better).
+    held: Option<u64>,
     buf: Vec<u8>,
 }
 
@@ -110,6 +113,7 @@ impl<W: Write + Seek> McapOut<W> {
             channel_ids: Vec::new(),
             sequence: vec![0; CHANNELS.len()],
             clock,
+            held: None,
             buf: Vec::with_capacity(1 << 16),
         };
         let writer = out.checked(writer)?;
@@ -163,10 +167,24 @@ impl<W: Write + Seek> McapOut<W> {
 
     /// The time a message written now gets.
     pub fn now(&self) -> u64 {
+        if let Some(t) = self.held {
+            return t;
+        }
         match self.clock {
             Clock::Wall { epoch_ns, started } => epoch_ns + started.elapsed().as_nanos() as u64,
             Clock::Fixed(t) => t,
         }
+    }
+
+    /// Log every message at the current time until [`McapOut::release_time`].
+    pub fn hold_time(&mut self) {
+        self.held = None;
+        self.held = Some(self.now());
+    }
+
+    /// Log messages at their own time again.
+    pub fn release_time(&mut self) {
+        self.held = None;
     }
 
     /// Log the next messages at `time_ns` (a [`Clock::Fixed`] output).

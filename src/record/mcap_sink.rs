@@ -314,7 +314,10 @@ impl<W: Write + Seek> Observer for McapSink<W> {
     }
 
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+        // the messages of an increment are logged at one time (when it is written)
+        self.out.hold_time();
         let r = self.write_increment(rec, view);
+        self.out.release_time();
         r.map_err(|e| self.err(e))
     }
 
