@@ -217,6 +217,12 @@ impl ContactLabels {
         let (name, slaves) = &self.pairs[pair];
         (name.clone(), slaves[slave].clone())
     }
+
+    /// The same, or `None` for a pair or slave the model does not have.
+    pub fn label(&self, pair: usize, slave: usize) -> Option<(Arc<str>, Arc<str>)> {
+        let (name, slaves) = self.pairs.get(pair)?;
+        Some((name.clone(), slaves.get(slave)?.clone()))
+    }
 }
 
 impl ContactPointRecord {
