@@ -134,6 +134,13 @@ fn main() {
             },
         ),
         (
+            "failed its",
+            McapOptions {
+                iterations: contrail::record::mcap_sink::Iterations::Failed,
+                ..McapOptions::default()
+            },
+        ),
+        (
             "bare",
             McapOptions {
                 compression: ChunkCompression::None,
