@@ -1,9 +1,14 @@
 """Interoperability check of contrail MCAP recordings with Python's `mcap` reader and
 `jsonschema`: every message of every file is read and validated against its channel's
-schema, the schemas must equal the checked-in files in schemas/, and the run metadata,
-scene attachment and closing outcome message must be present.
+schema, the schemas must equal the checked-in files of the recording's format (format 3:
+schemas/ and schemas/foxglove/; format 2 and older: schemas/format2/), and the run metadata,
+scene attachment and closing outcome message must be present. In format 3 every `/contact`
+and `/pressure` message is a set of equally long arrays, one `/contact` message per increment
+and pair; the Foxglove channels are validated again against the schemas published in
+`@foxglove/schemas` (`--foxglove DIR` with foxglove.Log.json and foxglove.SceneUpdate.json as
+the package has them; the recording embeds them without their descriptions).
 
-Usage: python .ci/interop.py --schemas schemas FILE.mcap...
+Usage: python .ci/interop.py --schemas schemas [--foxglove DIR] FILE.mcap...
 """
 
 import argparse
@@ -15,85 +20,152 @@ import jsonschema
 from mcap.reader import make_reader
 
 TOPICS = {"/model", "/increment", "/iteration", "/contact", "/crossing", "/positions", "/pressure", "/log", "/outcome"}
+FOXGLOVE = {"/foxglove/log": "foxglove.Log", "/foxglove/scene": "foxglove.SceneUpdate",
+            "/foxglove/reference": "foxglove.SceneUpdate"}
+CONTACT_ARRAYS = ["slave", "segment", "previous_segment", "xi", "xi_anchor", "gap", "normal_force",
+                  "trial_traction", "traction", "state", "crossing", "position", "contact_point",
+                  "normal", "tangent"]
+PRESSURE_ARRAYS = ["slave", "node", "segment", "s", "contact_point", "normal_force", "tributary", "pressure"]
 
 
 def reject_constant(name):
     raise ValueError(f"bare JSON constant {name} (non-finite values must be strings)")
 
 
-def check(path, checked_in):
-    problems = []
-    counts = {}
-    validators = {}
-    last_topic = None
-    with open(path, "rb") as f:
-        reader = make_reader(f)
-        header = reader.get_header()
-        if header.profile != "contrail":
-            problems.append(f"profile {header.profile!r}, expected 'contrail'")
-        summary = reader.get_summary()
-        topics = {c.topic for c in summary.channels.values()}
-        if topics != TOPICS:
-            problems.append(f"channels {sorted(topics)}, expected {sorted(TOPICS)}")
-        for schema, channel, message in reader.iter_messages(log_time_order=False):
-            if schema is None or schema.encoding != "jsonschema" or channel.message_encoding != "json":
-                problems.append(f"{channel.topic}: not a json channel with a jsonschema schema")
-                continue
-            if channel.topic not in validators:
-                text = schema.data.decode()
-                if text not in checked_in:
-                    problems.append(f"{channel.topic}: schema {schema.name} differs from every file in schemas/")
-                doc = json.loads(text)
-                cls = jsonschema.validators.validator_for(doc)
-                cls.check_schema(doc)
-                validators[channel.topic] = cls(doc)
-            try:
-                value = json.loads(message.data, parse_constant=reject_constant)
-            except ValueError as e:
-                problems.append(f"{channel.topic} #{message.sequence}: {e}")
-                continue
-            errors = list(validators[channel.topic].iter_errors(value))
-            if errors:
-                problems.append(f"{channel.topic} #{message.sequence}: {errors[0].message}")
-            counts[channel.topic] = counts.get(channel.topic, 0) + 1
-            last_topic = channel.topic
-        f.seek(0)
-        reader = make_reader(f)
-        meta = {m.name: m.metadata for m in reader.iter_metadata()}
-        run = meta.get("contrail.run")
+def strip(doc):
+    """A published schema without its descriptions and comments (as recordings embed it)."""
+    if isinstance(doc, list):
+        return [strip(x) for x in doc]
+    if isinstance(doc, dict):
+        return {k: strip(v) for k, v in doc.items() if k not in ("description", "$comment")}
+    return doc
+
+
+def checked_in(root, version):
+    root = pathlib.Path(root)
+    if version == "3":
+        files = list(root.glob("*.schema.json")) + list(root.glob("foxglove/*.json"))
+    else:
+        files = list(root.glob("format2/*.schema.json"))
+    return {p.read_text() for p in files}
+
+
+class Check:
+    def __init__(self, path, schemas_dir, published):
+        self.path = path
+        self.schemas_dir = schemas_dir
+        self.published = published
+        self.problems = []
+        self.counts = {}
+        self.validators = {}
+        self.contact_per_increment = {}
+        self.last_topic = None
+
+    def run(self):
+        with open(self.path, "rb") as f:
+            meta = {m.name: m.metadata for m in make_reader(f).iter_metadata()}
+            run = meta.get("contrail.run") or {}
+            self.version = run.get("format_version", "")
+            self.metadata(run)
+            f.seek(0)
+            reader = make_reader(f)
+            if reader.get_header().profile != "contrail":
+                self.problems.append(f"profile {reader.get_header().profile!r}, expected 'contrail'")
+            topics = {c.topic for c in reader.get_summary().channels.values()}
+            expected = TOPICS | (set(FOXGLOVE) if self.version == "3" else set())
+            if topics != expected:
+                self.problems.append(f"channels {sorted(topics)}, expected {sorted(expected)}")
+            texts = checked_in(self.schemas_dir, self.version)
+            for schema, channel, message in reader.iter_messages(log_time_order=False):
+                self.message(schema, channel, message, texts)
+            f.seek(0)
+            attachments = [a for a in make_reader(f).iter_attachments() if a.media_type == "application/toml"]
+            if not attachments or not attachments[0].data:
+                self.problems.append("no scene attachment")
+        if self.last_topic != "/outcome":
+            self.problems.append(f"last message is on {self.last_topic}, expected /outcome")
+        if self.counts.get("/model") != 1:
+            self.problems.append(f"{self.counts.get('/model', 0)} model messages, expected 1")
+        if self.version == "3":
+            pairs = {len(v) for v in self.contact_per_increment.values()}
+            if len(pairs) > 1:
+                self.problems.append(f"/contact: {sorted(pairs)} messages per increment, expected one per pair")
+        return self
+
+    def metadata(self, run):
         if not run:
-            problems.append("no contrail.run metadata")
-        else:
-            for key in ("scene", "overrides", "transfer", "parameters", "crate_version", "git_revision"):
-                if key not in run:
-                    problems.append(f"metadata lacks {key}")
-        f.seek(0)
-        reader = make_reader(f)
-        attachments = [a for a in reader.iter_attachments() if a.media_type == "application/toml"]
-        if not attachments or not attachments[0].data:
-            problems.append("no scene attachment")
-    if last_topic != "/outcome":
-        problems.append(f"last message is on {last_topic}, expected /outcome")
-    if counts.get("/model") != 1:
-        problems.append(f"{counts.get('/model', 0)} model messages, expected 1")
-    total = sum(counts.values())
-    return problems, total, counts
+            self.problems.append("no contrail.run metadata")
+        for key in ("scene", "overrides", "transfer", "parameters", "crate_version", "git_revision", "format_version"):
+            if key not in run:
+                self.problems.append(f"metadata lacks {key}")
+
+    def validator(self, schema, channel, texts):
+        text = schema.data.decode()
+        if text not in texts:
+            self.problems.append(f"{channel.topic}: schema {schema.name} differs from the files of format {self.version}")
+        doc = json.loads(text)
+        cls = jsonschema.validators.validator_for(doc)
+        cls.check_schema(doc)
+        validators = [cls(doc)]
+        name = FOXGLOVE.get(channel.topic)
+        if name:
+            if schema.name != name:
+                self.problems.append(f"{channel.topic}: schema name {schema.name}, expected {name}")
+            full = self.published.get(name)
+            if full is None:
+                self.problems.append(f"{channel.topic}: no published {name} schema given (--foxglove)")
+            else:
+                if strip(full) != doc:
+                    self.problems.append(f"{channel.topic}: embedded schema is not the published {name}")
+                validators.append(jsonschema.validators.validator_for(full)(full))
+        return validators
+
+    def message(self, schema, channel, message, texts):
+        topic = channel.topic
+        if schema is None or schema.encoding != "jsonschema" or channel.message_encoding != "json":
+            self.problems.append(f"{topic}: not a json channel with a jsonschema schema")
+            return
+        if topic not in self.validators:
+            self.validators[topic] = self.validator(schema, channel, texts)
+        try:
+            value = json.loads(message.data, parse_constant=reject_constant)
+        except ValueError as e:
+            self.problems.append(f"{topic} #{message.sequence}: {e}")
+            return
+        for v in self.validators[topic]:
+            errors = list(v.iter_errors(value))
+            if errors:
+                self.problems.append(f"{topic} #{message.sequence}: {errors[0].message}")
+        if self.version == "3" and topic in ("/contact", "/pressure"):
+            fields = CONTACT_ARRAYS if topic == "/contact" else PRESSURE_ARRAYS
+            lengths = {k: len(value[k]) for k in fields if isinstance(value.get(k), list)}
+            if len(set(lengths.values())) != 1 or len(lengths) != len(fields):
+                self.problems.append(f"{topic} #{message.sequence}: arrays of lengths {lengths}")
+            if topic == "/contact":
+                self.contact_per_increment.setdefault(value["increment"], set()).add(value["pair"])
+        self.counts[topic] = self.counts.get(topic, 0) + 1
+        self.last_topic = topic
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--schemas", required=True)
+    ap.add_argument("--foxglove", help="directory with the published foxglove.*.json schemas")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args()
-    checked_in = {p.read_text() for p in pathlib.Path(args.schemas).glob("*.schema.json")}
+    published = {}
+    if args.foxglove:
+        for p in pathlib.Path(args.foxglove).glob("foxglove.*.json"):
+            published[p.stem] = json.loads(p.read_text())
     failed = 0
     for path in args.files:
-        problems, total, counts = check(path, checked_in)
-        status = "ok" if not problems else "FAILED"
-        print(f"{path}: {status}, {total} messages validated {counts}")
-        for p in problems[:20]:
+        c = Check(path, args.schemas, published).run()
+        status = "ok" if not c.problems else "FAILED"
+        total = sum(c.counts.values())
+        print(f"{path}: format {c.version}, {status}, {total} messages validated {c.counts}")
+        for p in c.problems[:20]:
             print(f"  {p}")
-        failed += bool(problems)
+        failed += bool(c.problems)
     print(f"mcap interop: {len(args.files) - failed} passed, {failed} failed")
     return 1 if failed else 0
 

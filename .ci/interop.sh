@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # Interoperability checks of contrail recordings (called by .ci/run):
 #  - Python's `mcap` reader + `jsonschema` read and validate every message of recordings of a
-#    completed, a failed and a thinned run, and of LZ4-compressed and uncompressed ones
-#    (.ci/interop.py);
+#    completed, a failed and a thinned run, of LZ4-compressed and uncompressed ones, of the
+#    checked-in format-2 recording and of its conversion to format 3 (.ci/interop.py); the
+#    Foxglove channels also against the JSON Schemas published in the npm package
+#    `@foxglove/schemas` (installed into $CONTRAIL_INTEROP_NPM);
+#  - the Python snippet of docs/recording.md reads the arrays of a recording into numpy;
 #  - the rerun CLI of rerun-sdk==0.36.3 (the crate's version) verifies the .rrd of a run and
 #    of a replay (`rerun rrd verify`);
 #  - meshio reads the ParaView series (.pvd + .vtu) of `run --out X.pvd` and of
@@ -15,6 +18,8 @@ cd "$(dirname "$0")/.."
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/contrail-target}"
 VENV="${CONTRAIL_INTEROP_VENV:-$HOME/.cache/contrail-interop-venv}"
 PY_PACKAGES=("mcap==1.6.0" "jsonschema==4.26.0" "rerun-sdk==0.36.3" "meshio==5.3.5")
+NPM_DIR="${CONTRAIL_INTEROP_NPM:-$HOME/.cache/contrail-interop-npm}"
+FOXGLOVE_SCHEMAS="@foxglove/schemas@2.1.0"
 
 echo "== interop: python environment ($VENV)"
 if ! "$VENV/bin/python" -c "import mcap, jsonschema, meshio" 2>/dev/null \
@@ -24,6 +29,16 @@ if ! "$VENV/bin/python" -c "import mcap, jsonschema, meshio" 2>/dev/null \
 fi
 "$VENV/bin/rerun" analytics disable >/dev/null 2>&1 || true
 "$VENV/bin/rerun" --version
+
+echo "== interop: $FOXGLOVE_SCHEMAS ($NPM_DIR)"
+if ! command -v npm >/dev/null; then
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null
+fi
+if [ ! -f "$NPM_DIR/node_modules/@foxglove/schemas/package.json" ] \
+    || ! grep -q '"version": "2.1.0"' "$NPM_DIR/node_modules/@foxglove/schemas/package.json"; then
+    mkdir -p "$NPM_DIR"
+    npm install --prefix "$NPM_DIR" --no-save --no-audit --no-fund --loglevel=error "$FOXGLOVE_SCHEMAS"
+fi
 
 echo "== interop: recordings"
 cargo build --locked --quiet
@@ -56,10 +71,36 @@ fi
 record half-disc --quiet --out "$TMP/hd.pvd" --out "$TMP/hd.mcap" --out "$TMP/hd.csv"
 record half-disc --quiet --vtu-every 2 --out "$TMP/hd2.pvd" --out "$TMP/hd2.csv"
 "$BIN" export "$TMP/hd.mcap" --vtu "$TMP/exported" >/dev/null
+# a format-2 recording and the same run converted to format 3
+"$BIN" convert recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap" >/dev/null
+# every increment with a Foxglove scene, and every contact point written
+record strip-channel --quiet --set stepping.increments=60 --set fix.1.value=-0.3 --scene-every 1 \
+    --all-points --out "$TMP/scenes.mcap"
+
+echo "== interop: the published Foxglove schemas"
+# the package ships its JSON Schemas as a module (dist/jsonschema): written out as files
+FOXGLOVE_DIR="$TMP/foxglove"
+mkdir -p "$FOXGLOVE_DIR"
+NODE_PATH="$NPM_DIR/node_modules" node -e '
+const s = require("@foxglove/schemas/jsonschema");
+const fs = require("fs");
+for (const n of ["Log", "SceneUpdate"]) {
+    fs.writeFileSync(process.argv[1] + "/foxglove." + n + ".json", JSON.stringify(s[n]));
+}' "$FOXGLOVE_DIR"
+ls "$FOXGLOVE_DIR"
 
 echo "== interop: mcap + jsonschema"
-"$VENV/bin/python" .ci/interop.py --schemas schemas "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
-    "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap"
+"$VENV/bin/python" .ci/interop.py --schemas schemas --foxglove "$FOXGLOVE_DIR" \
+    "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
+    "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap" "$TMP/scenes.mcap" \
+    recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
+
+echo "== interop: the numpy snippet of docs/recording.md"
+# the python block after the marker line, run as it is on a recording
+awk '/<!-- snippet: read-arrays -->/ { on = 1; next } on && /^```python/ { inside = 1; next } inside && /^```/ { exit } inside' \
+    docs/recording.md >"$TMP/snippet.py"
+test -s "$TMP/snippet.py"
+"$VENV/bin/python" .ci/snippet_check.py "$TMP/snippet.py" "$TMP/strip.mcap" "$TMP/scenes.mcap"
 
 echo "== interop: meshio reads the VTU series"
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"

@@ -42,6 +42,10 @@ def read_mcap(path):
             if channel.topic == "/model":
                 model = doc
             else:
+                if isinstance(doc["nodes"], str):
+                    # format 3: byte-shuffled doubles in hexadecimal (schemas/positions.schema.json)
+                    planes = np.frombuffer(bytes.fromhex(doc["nodes"]), np.uint8).reshape(8, -1)
+                    doc["nodes"] = planes.T.copy().view("<f8").reshape(-1, 2)
                 positions[doc["increment"]] = doc
     return model, positions
 

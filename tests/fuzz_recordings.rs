@@ -1,5 +1,7 @@
-//! Fuzzing the recording reader (issue 10): a small real recording is damaged by byte flips,
-//! truncations, zeroed ranges, appended junk, and mutated JSON inside a file with valid CRCs;
+//! Fuzzing the recording reader (issue 10): a small real recording — one written now (format
+//! 3: `/contact` and `/pressure` as arrays, Foxglove channels) and one of format 2 (slave
+//! nodes out of reach left out) — is damaged by byte flips, truncations, zeroed ranges,
+//! appended junk, and mutated JSON inside a file with valid CRCs;
 //! reading it must end (within a time limit) in a recording or an error — never a panic or a
 //! hang — and a recording that reads must survive `inspect`, `diff` against itself and a
 //! replay into a rerun stream, and `recover` must not panic either.
@@ -13,7 +15,7 @@ use contrail::analysis::recording::Recording;
 use contrail::analysis::recover::recover;
 use contrail::record::mcap_sink::{McapOptions, McapSink};
 use contrail::record::rerun_sink::RerunView;
-use contrail::record::schemas::{self, CHANNELS};
+use contrail::record::schemas;
 use proptest::prelude::*;
 use std::collections::{BTreeMap, HashMap};
 use std::io::Cursor;
@@ -28,51 +30,84 @@ fn cases() -> u32 {
         .unwrap_or(64)
 }
 
-/// The recording every case starts from (crossing, 12 increments).
-fn base() -> &'static [u8] {
-    static B: OnceLock<Vec<u8>> = OnceLock::new();
+/// The recordings the cases start from: 0 written now (format 3; the strip-channel pulled
+/// down by 0.1 in 12 increments: contact points within and out of reach, pressure profiles,
+/// Foxglove scenes), 1 of format 2 (`recordings/golden/format2/`).
+fn bases() -> &'static [Vec<u8>; 2] {
+    static B: OnceLock<[Vec<u8>; 2]> = OnceLock::new();
     B.get_or_init(|| {
-        let sets = vec!["stepping.increments=12".to_string(), "stepping.end=0.3".into()];
-        let (src, model) = contrail::load_scene("crossing", &sets).unwrap();
+        let sets = vec!["stepping.increments=12".to_string(), "fix.1.value=-0.1".into()];
+        let (src, model) = contrail::load_scene("strip-channel", &sets).unwrap();
         let info = contrail::run_info(&src, &sets, &model);
         let opts = McapOptions::default();
         let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", opts).unwrap();
         let _ = contrail::solver::run(&model, &info, &mut sink, &AtomicBool::new(false));
-        sink.into_inner().unwrap().into_inner()
+        let now = sink.into_inner().unwrap().into_inner();
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/recordings/golden/format2/strip-channel.mcap"
+        );
+        let older = std::fs::read(path).unwrap();
+        assert_eq!(
+            Recording::from_bytes(&older, "f2").unwrap().metadata["format_version"],
+            "2"
+        );
+        [now, older]
     })
 }
 
-/// The messages of the base recording, (topic, sequence, log time, JSON).
-type Messages = Vec<(String, u32, u64, Vec<u8>)>;
-
-fn messages() -> &'static (Messages, BTreeMap<String, String>) {
-    static M: OnceLock<(Messages, BTreeMap<String, String>)> = OnceLock::new();
-    M.get_or_init(|| {
-        let r = Recording::from_bytes(base(), "base").unwrap();
-        let mut out = Vec::new();
-        for m in mcap::MessageStream::new(base()).unwrap() {
-            let m = m.unwrap();
-            out.push((m.channel.topic.clone(), m.sequence, m.log_time, m.data.into_owned()));
-        }
-        (out, r.metadata)
-    })
+fn base(b: usize) -> &'static [u8] {
+    &bases()[b % 2]
 }
 
-/// A recording with valid CRCs whose message `k` has JSON `data`.
-fn reencode(k: usize, data: &[u8]) -> Vec<u8> {
-    let (msgs, metadata) = messages();
+/// A message of a base recording: topic, schema (name and text), sequence, log time, JSON.
+struct Message {
+    topic: String,
+    schema: (String, Vec<u8>),
+    sequence: u32,
+    log_time: u64,
+    data: Vec<u8>,
+}
+
+fn messages(b: usize) -> &'static (Vec<Message>, BTreeMap<String, String>) {
+    static M: OnceLock<[(Vec<Message>, BTreeMap<String, String>); 2]> = OnceLock::new();
+    let all = M.get_or_init(|| {
+        [0, 1].map(|b| {
+            let r = Recording::from_bytes(base(b), "base").unwrap();
+            let mut out = Vec::new();
+            for m in mcap::MessageStream::new(base(b)).unwrap() {
+                let m = m.unwrap();
+                let schema = m.channel.schema.as_ref().unwrap();
+                out.push(Message {
+                    topic: m.channel.topic.clone(),
+                    schema: (schema.name.clone(), schema.data.to_vec()),
+                    sequence: m.sequence,
+                    log_time: m.log_time,
+                    data: m.data.into_owned(),
+                });
+            }
+            (out, r.metadata)
+        })
+    });
+    &all[b % 2]
+}
+
+/// A recording with valid CRCs (and the schemas of base `b`) whose message `k` has JSON `data`.
+fn reencode(b: usize, k: usize, data: &[u8]) -> Vec<u8> {
+    let (msgs, metadata) = messages(b);
     let mut w = mcap::WriteOptions::new()
         .profile(schemas::PROFILE)
         .create(Cursor::new(Vec::new()))
         .unwrap();
     let mut ids = HashMap::new();
-    for c in CHANNELS {
-        let s = w
-            .add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes())
-            .unwrap();
+    for m in msgs {
+        if ids.contains_key(&m.topic) {
+            continue;
+        }
+        let s = w.add_schema(&m.schema.0, "jsonschema", &m.schema.1).unwrap();
         ids.insert(
-            c.topic.to_string(),
-            w.add_channel(s, c.topic, "json", &BTreeMap::new()).unwrap(),
+            m.topic.clone(),
+            w.add_channel(s, &m.topic, "json", &BTreeMap::new()).unwrap(),
         );
     }
     w.write_metadata(&mcap::records::Metadata {
@@ -80,14 +115,14 @@ fn reencode(k: usize, data: &[u8]) -> Vec<u8> {
         metadata: metadata.clone(),
     })
     .unwrap();
-    for (i, (topic, seq, time, json)) in msgs.iter().enumerate() {
+    for (i, m) in msgs.iter().enumerate() {
         let header = mcap::records::MessageHeader {
-            channel_id: ids[topic],
-            sequence: *seq,
-            log_time: *time,
-            publish_time: *time,
+            channel_id: ids[&m.topic],
+            sequence: m.sequence,
+            log_time: m.log_time,
+            publish_time: m.log_time,
         };
-        w.write_to_known_channel(&header, if i == k { data } else { json })
+        w.write_to_known_channel(&header, if i == k { data } else { &m.data })
             .unwrap();
     }
     w.finish().unwrap();
@@ -149,8 +184,8 @@ fn damage() -> impl Strategy<Value = Damage> {
     ]
 }
 
-fn apply(d: &Damage) -> Vec<u8> {
-    let good = base();
+fn apply(b: usize, d: &Damage) -> Vec<u8> {
+    let good = base(b);
     let n = good.len();
     match d {
         Damage::Flip { at, xor } => {
@@ -167,13 +202,13 @@ fn apply(d: &Damage) -> Vec<u8> {
         }
         Damage::Append { junk } => [good, junk.as_slice()].concat(),
         Damage::Json { k, at, len, with } => {
-            let (msgs, _) = messages();
+            let (msgs, _) = messages(b);
             let k = k % msgs.len();
-            let mut json = msgs[k].3.clone();
+            let mut json = msgs[k].data.clone();
             let at = at % (json.len() + 1);
             let end = (at + len).min(json.len());
             json.splice(at..end, with.bytes());
-            reencode(k, &json)
+            reencode(b, k, &json)
         }
     }
 }
@@ -218,18 +253,41 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: Some(Box::new(proptest::test_runner::FileFailurePersistence::SourceParallel("proptest-regressions"))), ..ProptestConfig::default() })]
 
     #[test]
-    fn damaged_recordings_never_panic_or_hang(d in damage()) {
-        let bytes = apply(&d);
-        prop_assert!(exercise(bytes, 20).is_ok(), "{:?}", d);
+    fn damaged_recordings_never_panic_or_hang(b in 0..2usize, d in damage()) {
+        let bytes = apply(b, &d);
+        prop_assert!(exercise(bytes, 20).is_ok(), "base {b}: {:?}", d);
     }
 
     #[test]
-    fn several_damages_at_once(ds in proptest::collection::vec((any::<usize>(), 1..=255u8), 1..16)) {
-        let mut b = base().to_vec();
-        let n = b.len();
+    fn several_damages_at_once(b in 0..2usize, ds in proptest::collection::vec((any::<usize>(), 1..=255u8), 1..16)) {
+        let mut bytes = base(b).to_vec();
+        let n = bytes.len();
         for (at, xor) in &ds {
-            b[at % n] ^= xor;
+            bytes[at % n] ^= xor;
         }
-        prop_assert!(exercise(b, 20).is_ok(), "{:?}", ds);
+        prop_assert!(exercise(bytes, 20).is_ok(), "base {b}: {:?}", ds);
+    }
+
+    /// Format 3 only: the arrays of `/contact` and `/pressure` made ragged, indices out of
+    /// range, or other types, in a file with valid CRCs.
+    #[test]
+    fn damaged_arrays_are_errors_not_panics(k in any::<usize>(), field in 0..20usize, edit in 0..4usize) {
+        let (msgs, _) = messages(0);
+        let arrays: Vec<usize> = (0..msgs.len())
+            .filter(|&i| msgs[i].topic == "/contact" || msgs[i].topic == "/pressure")
+            .collect();
+        let k = arrays[k % arrays.len()];
+        let mut v: serde_json::Value = serde_json::from_slice(&msgs[k].data).unwrap();
+        let obj = v.as_object_mut().unwrap();
+        let key = obj.keys().nth(field % obj.len()).unwrap().clone();
+        let x = &mut obj[&key];
+        match (edit, x.as_array_mut()) {
+            (0, Some(a)) => { a.pop(); }
+            (1, Some(a)) => a.push(serde_json::json!(4_000_000_000u64)),
+            (2, _) => *x = serde_json::json!(9_999_999),
+            _ => *x = serde_json::json!([null, "NaN", {}]),
+        }
+        let bytes = reencode(0, k, &serde_json::to_vec(&v).unwrap());
+        prop_assert!(exercise(bytes, 20).is_ok(), "{key} edit {edit}");
     }
 }

@@ -1,10 +1,13 @@
 //! Golden traces: each scene is run again and its recording compared with the one in
-//! `recordings/golden/` by `diff` (aligned by increment, tolerance [`TOL`]: values agree when
-//! `|a − b| ≤ TOL · max(1, |a|, |b|)`; segment ids, states, iteration counts and crossings
-//! must be equal).
+//! `recordings/golden/format3/` by `diff` (aligned by increment, tolerance [`TOL`]: values
+//! agree when `|a − b| ≤ TOL · max(1, |a|, |b|)`; segment ids, states, iteration counts and
+//! crossings must be equal).
 //!
 //! After an intended change of the physics, refresh them with
-//! `CONTRAIL_BLESS=1 cargo test --test recording_golden` and commit `recordings/golden/`.
+//! `CONTRAIL_BLESS=1 cargo test --test recording_golden` and commit `recordings/golden/format3/`.
+//! The format-2 files in `recordings/golden/` are kept as they are: they are what
+//! `tests/recording_formats.rs` reads to check that the readers give the same answers on
+//! both formats.
 
 use contrail::analysis::diff::{diff, Align, DiffReport};
 use contrail::analysis::recording::Recording;
@@ -17,7 +20,7 @@ const TOL: f64 = 1e-6;
 
 fn path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("recordings/golden")
+        .join("recordings/golden/format3")
         .join(format!("{name}.mcap"))
 }
 

@@ -1,5 +1,7 @@
-//! The JSON Schemas in `schemas/` must be the ones generated from the record types.
-//! Refresh them on purpose with `CONTRAIL_BLESS=1 cargo test --test recording_schemas`.
+//! The JSON Schemas in `schemas/` must be the ones generated from the record types (and the
+//! Foxglove ones the ones embedded in recordings). Refresh them on purpose with
+//! `CONTRAIL_BLESS=1 cargo test --test recording_schemas`. The schemas of format 2 stay in
+//! `schemas/format2/` for older recordings.
 
 use contrail::record::schemas::{self, CHANNELS};
 use std::path::Path;
@@ -21,11 +23,17 @@ fn checked_in_schemas_match_the_record_types() {
 
 #[test]
 fn every_schema_is_a_2020_12_object_schema_and_documents_non_finite_reals() {
-    for c in CHANNELS {
+    for c in CHANNELS.iter().filter(|c| c.is_contrail()) {
         let v: serde_json::Value = serde_json::from_str(&c.schema_text()).unwrap();
         assert_eq!(
             v["$schema"], "https://json-schema.org/draft/2020-12/schema",
             "{}",
+            c.file
+        );
+        assert_eq!(
+            v["$id"],
+            schemas::schema_id(c.file),
+            "{}: the $id carries the format version",
             c.file
         );
         let text = c.schema_text();
@@ -40,7 +48,7 @@ fn every_real_of_a_per_increment_record_can_carry_nan_and_infinity() {
     // a plain `f64` field has the schema {"type": "number", "format": "double"} and is written
     // as `null` when NaN, which no reader gets back: give it `#[serde(with = "Real")]`
     // (`Real2` for `[f64; 2]`, `Reals` for `Vec<f64>`, see src/record/real.rs)
-    for c in CHANNELS.iter().filter(|c| c.topic != schemas::MODEL) {
+    for c in CHANNELS.iter().filter(|c| c.is_contrail() && c.topic != schemas::MODEL) {
         let v: serde_json::Value = serde_json::from_str(&c.schema_text()).unwrap();
         let mut plain = Vec::new();
         find_doubles(&v, "", &mut plain);
@@ -68,5 +76,49 @@ fn find_doubles(v: &serde_json::Value, at: &str, out: &mut Vec<String>) {
             }
         }
         _ => {}
+    }
+}
+
+#[test]
+fn the_format_2_schemas_stay_for_older_recordings() {
+    // the recordings of format 2 embed these texts; interop validates them against them
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("schemas/format2");
+    for (file, title) in [
+        ("contact_point.schema.json", "ContactPointMessage"),
+        ("pressure.schema.json", "PressureRecord"),
+        ("increment.schema.json", "IncrementRecord"),
+    ] {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["title"], title, "{file}");
+        assert!(v.get("$id").is_none(), "{file} is the format-2 text, unchanged");
+    }
+}
+
+#[test]
+fn the_format_3_arrays_have_one_array_per_field() {
+    let text = schemas::channel(schemas::CONTACT).unwrap().schema_text();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let props = v["properties"].as_object().unwrap();
+    for field in [
+        "slave",
+        "segment",
+        "previous_segment",
+        "xi",
+        "xi_anchor",
+        "gap",
+        "normal_force",
+        "trial_traction",
+        "traction",
+        "state",
+        "crossing",
+        "position",
+        "contact_point",
+        "normal",
+        "tangent",
+    ] {
+        let f = &props[field];
+        let is_array = f["type"] == "array" || f["$ref"] == "#/$defs/Reals";
+        assert!(is_array, "/contact {field}: {f}");
     }
 }

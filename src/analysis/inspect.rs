@@ -32,6 +32,8 @@ pub struct InspectReport {
     pub crate_version: String,
     pub git_revision: String,
     pub writer: String,
+    /// Recording format version (`format_version` of the metadata).
+    pub format_version: String,
     pub nodes: usize,
     pub elements: usize,
     pub contact_pairs: Vec<String>,
@@ -131,6 +133,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
         crate_version: meta("crate_version"),
         git_revision: meta("git_revision"),
         writer: r.library.clone(),
+        format_version: meta("format_version"),
         nodes: r.model.nodes.len(),
         elements: r.model.elements.len(),
         contact_pairs: r
@@ -190,7 +193,10 @@ pub fn render(s: &InspectReport) -> String {
     row("transfer", s.transfer.join(", "));
     row(
         "written by",
-        format!("{} (contrail {}, git {})", s.writer, s.crate_version, s.git_revision),
+        format!(
+            "{} (contrail {}, git {}), format {}",
+            s.writer, s.crate_version, s.git_revision, s.format_version
+        ),
     );
     row(
         "model",

@@ -2,6 +2,7 @@
 
 pub mod analytic;
 pub mod chunks;
+pub mod convert;
 pub mod diff;
 pub mod elastica;
 pub mod export;

@@ -4,7 +4,8 @@
 
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
-use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
+use crate::record::arrays::{ContactArrays, PressureArrays};
+use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
 use crate::record::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
@@ -66,6 +67,10 @@ pub struct Recording {
     /// Message count per topic.
     pub message_counts: BTreeMap<String, u64>,
     pub chunks: usize,
+    /// Log time (ns since the UNIX epoch) of the `/model` message and of each increment's
+    /// `/increment` message (what `contrail convert` gives the messages it writes).
+    pub start_time: u64,
+    pub increment_times: BTreeMap<usize, u64>,
 }
 
 impl Recording {
@@ -181,6 +186,12 @@ impl Recording {
             topic: schemas::MODEL.to_string(),
             what,
         })?;
+        b.expand_arrays(&model)
+            .map_err(|(topic, what)| RecordingError::Invalid {
+                path: name.to_string(),
+                topic,
+                what,
+            })?;
         restore_out_of_reach(&mut b.contact, &b.positions);
         check_records(&model, &b).map_err(|(topic, what)| RecordingError::Invalid {
             path: name.to_string(),
@@ -204,6 +215,8 @@ impl Recording {
             pressure: b.pressure,
             message_counts: b.counts,
             chunks,
+            start_time: b.start_time,
+            increment_times: b.increment_times,
         })
     }
 
@@ -213,7 +226,7 @@ impl Recording {
     }
 }
 
-/// Put back the `/contact` records a version-2 recording leaves out (see
+/// Put back the `/contact` records a version-2 or -3 recording leaves out (see
 /// [`crate::record::mcap_sink::OutOfReach`]): in each increment with a `/positions`
 /// message, a node slave whose last record was out of reach and that has none is out of
 /// reach still; its record is the last one with the node's current position and no
@@ -270,8 +283,9 @@ struct State {
     library: String,
     metadata: Option<BTreeMap<String, String>>,
     scene_file: Option<(String, String)>,
-    topics: HashMap<u16, String>,
-    schema_encodings: HashMap<u16, String>,
+    topics: HashMap<u16, (String, String)>,
+    /// Encoding and name of each schema.
+    schemas: HashMap<u16, (String, String)>,
 }
 
 impl State {
@@ -286,9 +300,10 @@ impl State {
                 self.library = h.library;
             }
             Record::Schema { header, .. } => {
-                self.schema_encodings.insert(header.id, header.encoding);
+                self.schemas.insert(header.id, (header.encoding, header.name));
             }
             Record::Channel(c) => {
+                let (encoding, schema) = self.schemas.get(&c.schema_id).cloned().unwrap_or_default();
                 if schemas::channel(&c.topic).is_some() {
                     if c.message_encoding != "json" {
                         return Err(not_ours(format!(
@@ -296,25 +311,25 @@ impl State {
                             c.topic, c.message_encoding
                         )));
                     }
-                    if self.schema_encodings.get(&c.schema_id).map(String::as_str) != Some("jsonschema") {
+                    if encoding != "jsonschema" {
                         return Err(not_ours(format!("channel {} has no jsonschema schema", c.topic)));
                     }
                 }
-                self.topics.insert(c.id, c.topic);
+                self.topics.insert(c.id, (c.topic, schema));
             }
             Record::Metadata(m) if m.name == schemas::METADATA_NAME => self.metadata = Some(m.metadata),
             Record::Attachment { header, data, .. } if header.media_type == "application/toml" => {
                 self.scene_file = Some((header.name, String::from_utf8_lossy(&data).into_owned()));
             }
             Record::Message { header, data } => {
-                let topic = self
+                let (topic, schema) = self
                     .topics
                     .get(&header.channel_id)
                     .ok_or_else(|| RecordingError::Corrupt {
                         path: name.to_string(),
                         source: mcap::McapError::UnknownChannel(header.sequence, header.channel_id),
                     })?;
-                b.message(topic, header.sequence, &data)
+                b.message(topic, schema, &header, &data)
                     .map_err(|(topic, sequence, source)| RecordingError::Message {
                         path: name.to_string(),
                         topic,
@@ -341,6 +356,12 @@ pub(crate) struct Builder {
     pub(crate) outcome: Option<Outcome>,
     pub(crate) pressure: Vec<PressureRecord>,
     pub(crate) counts: BTreeMap<String, u64>,
+    /// Format-3 messages, made into records once the model is known.
+    contact_arrays: Vec<ContactArrays>,
+    pressure_arrays: Vec<PressureArrays>,
+    packed_positions: Vec<PackedPositions>,
+    start_time: u64,
+    increment_times: BTreeMap<usize, u64>,
 }
 
 type MessageError = (String, u32, serde_json::Error);
@@ -350,22 +371,66 @@ fn parse<T: DeserializeOwned>(topic: &str, sequence: u32, data: &[u8]) -> Result
 }
 
 impl Builder {
-    fn message(&mut self, topic: &str, seq: u32, data: &[u8]) -> Result<(), MessageError> {
+    /// Take one message of `topic`, whose schema is named `schema` (the layout of `/contact`
+    /// and `/pressure` depends on it: points and profiles of objects in formats 1 and 2,
+    /// arrays in format 3).
+    fn message(
+        &mut self,
+        topic: &str,
+        schema: &str,
+        header: &mcap::records::MessageHeader,
+        data: &[u8],
+    ) -> Result<(), MessageError> {
         *self.counts.entry(topic.to_string()).or_default() += 1;
+        let seq = header.sequence;
         match topic {
-            schemas::MODEL => self.model = Some(parse(topic, seq, data)?),
-            schemas::INCREMENT => self.increments.push(parse(topic, seq, data)?),
+            schemas::MODEL => {
+                self.model = Some(parse(topic, seq, data)?);
+                self.start_time = header.log_time;
+            }
+            schemas::INCREMENT => {
+                let inc: IncrementRecord = parse(topic, seq, data)?;
+                self.increment_times.insert(inc.increment, header.log_time);
+                self.increments.push(inc);
+            }
             schemas::ITERATION => self.iterations.push(parse(topic, seq, data)?),
+            schemas::CONTACT if schema == schemas::CONTACT_ARRAYS => {
+                self.contact_arrays.push(parse(topic, seq, data)?);
+            }
             schemas::CONTACT => {
                 let m: ContactPointMessage = parse(topic, seq, data)?;
                 self.contact.entry(m.increment).or_default().push(m.point);
             }
             schemas::CROSSING => self.crossings.push(parse(topic, seq, data)?),
+            schemas::POSITIONS if schema == schemas::PACKED_POSITIONS => {
+                self.packed_positions.push(parse(topic, seq, data)?);
+            }
             schemas::POSITIONS => self.positions.push(parse(topic, seq, data)?),
             schemas::LOG => self.logs.push(parse(topic, seq, data)?),
             schemas::OUTCOME => self.outcome = Some(parse(topic, seq, data)?),
+            schemas::PRESSURE if schema == schemas::PRESSURE_ARRAYS => {
+                self.pressure_arrays.push(parse(topic, seq, data)?);
+            }
             schemas::PRESSURE => self.pressure.push(parse(topic, seq, data)?),
             _ => {}
+        }
+        Ok(())
+    }
+
+    /// Make the format-3 messages into records (labels from `model`); an error names the
+    /// topic and what is wrong.
+    fn expand_arrays(&mut self, model: &ModelRecord) -> Result<(), (String, String)> {
+        for a in std::mem::take(&mut self.contact_arrays) {
+            let points = a.records(model).map_err(|e| (schemas::CONTACT.to_string(), e))?;
+            self.contact.entry(a.increment).or_default().extend(points);
+        }
+        for p in std::mem::take(&mut self.packed_positions) {
+            self.positions
+                .push(p.unpack().map_err(|e| (schemas::POSITIONS.to_string(), e))?);
+        }
+        for a in std::mem::take(&mut self.pressure_arrays) {
+            self.pressure
+                .push(a.record().map_err(|e| (schemas::PRESSURE.to_string(), e))?);
         }
         Ok(())
     }

@@ -5,7 +5,8 @@
 //! decompressed with bounded work and kept only if its CRC matches (a damaged chunk whose
 //! length is intact is skipped, and the walk goes on); the walk stops at the first record
 //! that runs past the end of the file. Metadata and the scene attachment are copied, the
-//! messages of the contrail channels are written again in their order, and — unless the
+//! messages of the contrail channels are written again in their order, on channels with the
+//! schemas the file had (a recording of an older format stays one), and — unless the
 //! salvaged part already ends with one — an `/outcome` is appended that says the run was cut
 //! off and the file recovered (a `failed` outcome whose reason starts with [`RECOVERED`]).
 
@@ -55,12 +56,19 @@ struct Message {
     data: Vec<u8>,
 }
 
+/// A schema of the damaged file: name, encoding, text.
+type SchemaText = (String, String, Vec<u8>);
+
 #[derive(Default)]
 struct Salvage {
     library: String,
     metadata: Vec<Metadata>,
     attachments: Vec<mcap::Attachment<'static>>,
-    topics: HashMap<u16, String>,
+    /// Topic and schema id of each channel.
+    topics: HashMap<u16, (String, u16)>,
+    schemas: HashMap<u16, SchemaText>,
+    /// The schema each contrail topic had (from its channel).
+    topic_schemas: HashMap<String, SchemaText>,
     messages: Vec<Message>,
 }
 
@@ -68,8 +76,17 @@ impl Salvage {
     fn record(&mut self, r: Record) {
         match r {
             Record::Header(h) => self.library = h.library,
+            Record::Schema { header, data } => {
+                let text = (header.name, header.encoding, data.into_owned());
+                self.schemas.insert(header.id, text);
+            }
             Record::Channel(c) => {
-                self.topics.insert(c.id, c.topic);
+                if let Some(schema) = self.schemas.get(&c.schema_id) {
+                    if schemas::channel(&c.topic).is_some() {
+                        self.topic_schemas.insert(c.topic.clone(), schema.clone());
+                    }
+                }
+                self.topics.insert(c.id, (c.topic, c.schema_id));
             }
             Record::Metadata(m) => self.metadata.push(m),
             Record::Attachment { header, data, .. } => self.attachments.push(mcap::Attachment {
@@ -80,7 +97,7 @@ impl Salvage {
                 data: std::borrow::Cow::Owned(data.into_owned()),
             }),
             Record::Message { header, data } => {
-                if let Some(topic) = self.topics.get(&header.channel_id) {
+                if let Some((topic, _)) = self.topics.get(&header.channel_id) {
                     if schemas::channel(topic).is_some() {
                         self.messages.push(Message {
                             topic: topic.clone(),
@@ -180,9 +197,13 @@ fn write<W: Write + Seek>(
         .map_err(werr)?;
     let mut ids = HashMap::new();
     for c in CHANNELS {
-        let schema = w
-            .add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes())
-            .map_err(werr)?;
+        // the file's own schema for this topic (a recording of an older format keeps its
+        // layout), or this build's when the file's was lost
+        let schema = match s.topic_schemas.get(c.topic) {
+            Some((name, encoding, data)) => w.add_schema(name, encoding, data),
+            None => w.add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes()),
+        }
+        .map_err(werr)?;
         let mut meta = BTreeMap::new();
         meta.insert("description".to_string(), c.description.to_string());
         ids.insert(c.topic, w.add_channel(schema, c.topic, "json", &meta).map_err(werr)?);

@@ -3,6 +3,7 @@
 mod chart;
 mod check;
 mod client;
+mod convert;
 mod diff;
 mod export;
 mod inspect;
@@ -55,6 +56,9 @@ pub enum Command {
     /// Salvage the complete chunks of an unfinished or damaged recording (a killed run's
     /// `.NAME.PID.N.part` file) into a finalised one that ends with a "recovered" outcome.
     Recover(recover::RecoverArgs),
+    /// Write a recording of an older format again in the current one (format 3, with the
+    /// Foxglove channels).
+    Convert(convert::ConvertArgs),
     /// Run a plan of many runs in parallel (`sweep PLAN.toml --out DIR`), or join shard
     /// folders (`sweep merge DIR... --out DIR`).
     Sweep(sweep::SweepArgs),
@@ -134,6 +138,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Diff(a) => diff::diff(a),
         Command::Export(a) => export::export(a),
         Command::Recover(a) => recover::recover(a),
+        Command::Convert(a) => convert::convert(a),
         Command::Sweep(a) => sweep::sweep(a),
         Command::Chart(a) => chart::chart(a),
         Command::Serve(a) => serve::serve(a),

@@ -8,7 +8,7 @@ use contrail::format::{compact_list, plain};
 use contrail::record::background::Background;
 use contrail::record::csv::CsvSink;
 use contrail::record::jsonl::JsonlSink;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
+use contrail::record::mcap_sink::{ChunkCompression, Iterations, McapOptions, McapSink, SceneEvery};
 use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::vtu_sink::VtuSink;
 use contrail::record::{Fanout, Observer};
@@ -35,6 +35,21 @@ pub struct RunArgs {
     /// Compression of the `.mcap` chunks: zstd (level 1), lz4 or none.
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Zstd)]
     pub compression: ChunkCompression,
+    /// zstd level of the `.mcap` chunks (1–19; negative: zstd's fast levels).
+    #[arg(long, value_name = "LEVEL", default_value_t = 1, allow_negative_numbers = true,
+          value_parser = clap::value_parser!(i32).range(-7..=19))]
+    pub compression_level: i32,
+    /// In an `.mcap` recording, write the `/contact` entries of slave nodes that stay out of
+    /// reach at every increment too (by default they are left out where `/positions` is
+    /// written; readers restore them).
+    #[arg(long)]
+    pub all_points: bool,
+    /// Which Newton iterations an `.mcap` recording writes on `/iteration`: all (default) or
+    /// those of failed attempts only.
+    #[arg(long, value_enum, value_name = "WHICH", default_value_t = Iterations::All)]
+    pub iterations: Iterations,
+    #[command(flatten)]
+    pub foxglove: SceneArgs,
     /// In a `.pvd` series, write every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub vtu_every: u64,
@@ -62,6 +77,27 @@ fn progress_sink(path: &Path) -> anyhow::Result<ProgressSink> {
     Ok(ProgressSink::new(out, &path.display().to_string()))
 }
 
+/// Which increments of an `.mcap` recording get a Foxglove scene.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// In an `.mcap` recording, draw the model for Foxglove (`/foxglove/scene`) every N-th
+    /// increment, `auto` (about 200 scenes per run) or `off`; the reference configuration
+    /// and the last increment always get one unless `off`.
+    #[arg(long, value_name = "N|auto|off", default_value = "auto", value_parser = parse_scene_every)]
+    pub scene_every: SceneEvery,
+}
+
+fn parse_scene_every(s: &str) -> Result<SceneEvery, String> {
+    match s {
+        "auto" => Ok(SceneEvery::Auto),
+        "off" | "0" => Ok(SceneEvery::Off),
+        n => n
+            .parse::<usize>()
+            .map(SceneEvery::Every)
+            .map_err(|_| format!("`{n}`: give a number of increments, `auto` or `off`")),
+    }
+}
+
 fn open(path: &Path) -> anyhow::Result<BufWriter<std::fs::File>> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)
@@ -81,6 +117,10 @@ fn sink(path: &Path, a: &RunArgs) -> anyhow::Result<Box<dyn Observer>> {
             let opts = McapOptions {
                 positions_every: positions_every as usize,
                 compression: a.compression,
+                compression_level: a.compression_level,
+                thin_out_of_reach: !a.all_points,
+                iterations: a.iterations,
+                scene: a.foxglove.scene_every,
                 ..McapOptions::default()
             };
             if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {

@@ -18,7 +18,14 @@ pub struct AtomicFile {
     tmp: PathBuf,
     path: PathBuf,
     committed: bool,
+    /// Bytes written since the data was last synced to the disk.
+    unsynced: usize,
 }
+
+/// Data written is synced to the disk every this many bytes, on the writer's thread, so
+/// that [`AtomicFile::commit`] — which the run waits for — only syncs the tail: `fsync`
+/// takes about 1 ms per MB on the ext4 disk of the development machine.
+pub const SYNC_EVERY: usize = 2 << 20;
 
 impl AtomicFile {
     /// Create the temporary file (and the directory of `path` if needed).
@@ -44,6 +51,7 @@ impl AtomicFile {
             tmp,
             path: path.to_path_buf(),
             committed: false,
+            unsynced: 0,
         })
     }
 
@@ -77,7 +85,14 @@ impl Drop for AtomicFile {
 
 impl Write for AtomicFile {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        self.file.write(buf)
+        let n = self.file.write(buf)?;
+        self.unsynced += n;
+        if self.unsynced >= SYNC_EVERY {
+            self.file.flush()?;
+            self.file.get_ref().sync_data()?;
+            self.unsynced = 0;
+        }
+        Ok(n)
     }
     fn flush(&mut self) -> io::Result<()> {
         self.file.flush()

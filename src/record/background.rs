@@ -11,9 +11,10 @@
 //! A sink error surfaces at the solver's next call (the run stops there) or at `finish`.
 
 use super::{
-    ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome,
-    RunInfo, StepView,
+    ContactLabels, ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogRecord, Observer,
+    ObserverError, Outcome, RunInfo, StepView,
 };
+use crate::contact::law::ContactState;
 use crate::model::Model;
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
@@ -37,11 +38,83 @@ enum Message {
     Increment {
         rec: IncrementRecord,
         u: Vec<f64>,
-        contact: Vec<ContactPointRecord>,
+        contact: Vec<Point>,
         crossings: Vec<CrossingRecord>,
     },
     Log(LogRecord),
     Finish(Outcome),
+}
+
+/// A contact point record without its names, as handed to the writer thread: a plain copy
+/// (the names are shared `Arc`s, and cloning one on the solver's thread while the writer
+/// drops another contends for its counter); the writer names the points again from the
+/// model ([`ContactLabels`]).
+#[derive(Clone, Copy)]
+struct Point {
+    pair: usize,
+    slave: usize,
+    segment: Option<usize>,
+    previous_segment: Option<usize>,
+    xi: f64,
+    xi_anchor: f64,
+    gap: f64,
+    normal_force: f64,
+    trial_traction: f64,
+    traction: f64,
+    state: ContactState,
+    crossing: bool,
+    position: [f64; 2],
+    contact_point: [f64; 2],
+    normal: [f64; 2],
+    tangent: [f64; 2],
+}
+
+impl Point {
+    fn of(p: &ContactPointRecord) -> Self {
+        Point {
+            pair: p.pair,
+            slave: p.slave,
+            segment: p.segment,
+            previous_segment: p.previous_segment,
+            xi: p.xi,
+            xi_anchor: p.xi_anchor,
+            gap: p.gap,
+            normal_force: p.normal_force,
+            trial_traction: p.trial_traction,
+            traction: p.traction,
+            state: p.state,
+            crossing: p.crossing,
+            position: p.position,
+            contact_point: p.contact_point,
+            normal: p.normal,
+            tangent: p.tangent,
+        }
+    }
+
+    /// The record again, named by `labels` (`None` for a pair or slave the model lacks).
+    fn record(&self, labels: &ContactLabels) -> Option<ContactPointRecord> {
+        let (pair_name, slave_label) = labels.label(self.pair, self.slave)?;
+        Some(ContactPointRecord {
+            pair: self.pair,
+            pair_name,
+            slave: self.slave,
+            slave_label,
+            segment: self.segment,
+            previous_segment: self.previous_segment,
+            xi: self.xi,
+            xi_anchor: self.xi_anchor,
+            gap: self.gap,
+            normal_force: self.normal_force,
+            trial_traction: self.trial_traction,
+            traction: self.traction,
+            state: self.state,
+            crossing: self.crossing,
+            position: self.position,
+            contact_point: self.contact_point,
+            normal: self.normal,
+            tangent: self.tangent,
+        })
+    }
 }
 
 /// The first error of the wrapped sink, shared with the writer thread.
@@ -120,6 +193,8 @@ fn write(
     failure: Failure,
 ) -> Result<(), ObserverError> {
     let mut model: Option<Box<Model>> = None;
+    let mut labels = ContactLabels::default();
+    let mut records: Vec<ContactPointRecord> = Vec::new();
     let mut failed = false;
     for m in rx.into_iter().flatten() {
         let r = match m {
@@ -128,6 +203,7 @@ fn write(
             _ if failed => Ok(()),
             Message::Start(m, info) => {
                 let r = inner.start(&m, &info);
+                labels = ContactLabels::new(&m);
                 model = Some(m);
                 r
             }
@@ -138,15 +214,19 @@ fn write(
                 contact,
                 crossings,
             } => match &model {
-                Some(model) => inner.increment(
-                    &rec,
-                    &StepView {
-                        model,
-                        u: &u,
-                        contact: &contact,
-                        crossings: &crossings,
-                    },
-                ),
+                Some(model) => {
+                    records.clear();
+                    records.extend(contact.iter().filter_map(|p| p.record(&labels)));
+                    inner.increment(
+                        &rec,
+                        &StepView {
+                            model,
+                            u: &u,
+                            contact: &records,
+                            crossings: &crossings,
+                        },
+                    )
+                }
                 None => Ok(()),
             },
             Message::Log(rec) => inner.log(&rec),
@@ -171,12 +251,12 @@ impl Observer for Background {
     }
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         let bytes = 8 * (view.u.len() + rec.residuals.len())
-            + std::mem::size_of_val(view.contact)
+            + std::mem::size_of::<Point>() * view.contact.len()
             + std::mem::size_of_val(view.crossings);
         let m = Message::Increment {
             rec: rec.clone(),
             u: view.u.to_vec(),
-            contact: view.contact.to_vec(),
+            contact: view.contact.iter().map(Point::of).collect(),
             crossings: view.crossings.to_vec(),
         };
         self.send(m, bytes)
@@ -268,6 +348,34 @@ mod tests {
         assert_eq!(seen[0], "it 1");
         assert_eq!(seen[999], "it 1000");
         assert_eq!(seen[1000], "finish");
+    }
+
+    /// A `Memory` behind a lock, so the test can look at it after the writer is done.
+    struct Locked(Arc<Mutex<crate::record::Memory>>);
+    impl Observer for Locked {
+        fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
+            self.0.lock().unwrap().increment(rec, view)
+        }
+    }
+
+    #[test]
+    fn contact_records_reach_the_sink_as_the_solver_made_them() {
+        let (src, problem) = crate::load_scene("strip-channel", &["stepping.increments=20".into()]).unwrap();
+        let info = crate::run_info(&src, &[], &problem);
+        let behind = Arc::new(Mutex::new(crate::record::Memory::default()));
+        let mut b = Background::new(Box::new(Locked(behind.clone())), "test");
+        let mut direct = crate::record::Memory::default();
+        let mut fan = crate::record::Fanout::default();
+        fan.sinks.push(&mut b);
+        fan.sinks.push(&mut direct);
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let _ = crate::solver::run(&problem, &info, &mut fan, &stop);
+        drop(fan);
+        let behind = behind.lock().unwrap();
+        assert_eq!(behind.contact.len(), direct.contact.len());
+        assert!(direct.contact.iter().map(Vec::len).sum::<usize>() > 0);
+        let json = |c: &Vec<Vec<ContactPointRecord>>| serde_json::to_string(c).unwrap();
+        assert_eq!(json(&behind.contact), json(&direct.contact));
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! node positions, and the per-increment envelopes of contact points and crossings. Their
 //! JSON Schemas sit in `schemas/` next to those of the solver records.
 
-use super::real::{Real, Real2};
+use super::real::{Real, Real2, Real2s};
 use super::{ContactPointRecord, CrossingRecord};
 use crate::model::{Master, Model, RigidShape};
 use schemars::JsonSchema;
@@ -66,7 +66,7 @@ pub struct ModelRecord {
     pub description: String,
     /// Reference coordinates of the nodes.
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub nodes: Vec<[f64; 2]>,
     /// Quadrilaterals: four node ids, counter-clockwise.
     pub elements: Vec<[usize; 4]>,
@@ -198,7 +198,8 @@ impl ModelRecord {
     }
 }
 
-/// A contact slave point at the end of a converged increment (channel `/contact`): the
+/// A contact slave point at the end of a converged increment (channel `/contact` of formats
+/// 1 and 2, read by this build; format 3 writes [`super::arrays::ContactArrays`]): the
 /// increment and load level, then the fields of the solver's contact-point record.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct ContactPointMessage {
@@ -207,16 +208,6 @@ pub struct ContactPointMessage {
     pub t: f64,
     #[serde(flatten)]
     pub point: ContactPointRecord,
-}
-
-/// [`ContactPointMessage`] as written: the same JSON, borrowing the solver's record.
-#[derive(Serialize)]
-pub(crate) struct ContactPointMessageRef<'a> {
-    pub increment: usize,
-    #[serde(with = "Real")]
-    pub t: f64,
-    #[serde(flatten)]
-    pub point: &'a ContactPointRecord,
 }
 
 /// A crossing of a master-segment boundary in a converged increment (channel `/crossing`).
@@ -229,8 +220,19 @@ pub struct CrossingMessage {
     pub crossing: CrossingRecord,
 }
 
-/// Current positions after a converged increment (channel `/positions`; every increment, or
-/// every N-th and the last one with `--positions-every N`).
+/// [`CrossingMessage`] as written: the same JSON, borrowing the solver's record.
+#[derive(Serialize)]
+pub(crate) struct CrossingMessageRef<'a> {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    #[serde(flatten)]
+    pub crossing: &'a CrossingRecord,
+}
+
+/// Current positions after a converged increment (channel `/positions` of formats 1 and 2,
+/// and the in-memory form of format 3's [`PackedPositions`]; every increment, or every N-th
+/// and the last one with `--positions-every N`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct PositionsMessage {
     pub increment: usize,
@@ -238,53 +240,28 @@ pub struct PositionsMessage {
     pub t: f64,
     /// Current coordinates `X + u` of every node.
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub nodes: Vec<[f64; 2]>,
     /// Translation of each rigid body (same order as the model's `rigid`).
     #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "real_pairs")]
+    #[serde(with = "Real2s")]
     pub rigid_offsets: Vec<[f64; 2]>,
-}
-
-mod real_pairs {
-    use super::super::real::Real2;
-    use serde::ser::SerializeSeq;
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    struct P<'a>(&'a [f64; 2]);
-    impl serde::Serialize for P<'_> {
-        fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            Real2::serialize(self.0, s)
-        }
-    }
-    #[derive(Deserialize)]
-    struct D(#[serde(with = "Real2")] [f64; 2]);
-
-    pub fn serialize<S: Serializer>(v: &[[f64; 2]], s: S) -> Result<S::Ok, S::Error> {
-        let mut seq = s.serialize_seq(Some(v.len()))?;
-        for p in v {
-            seq.serialize_element(&P(p))?;
-        }
-        seq.end()
-    }
-    pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<[f64; 2]>, De::Error> {
-        let v: Vec<D> = Vec::deserialize(d)?;
-        Ok(v.into_iter().map(|D(p)| p).collect())
-    }
 }
 
 mod real_polylines {
     use serde::ser::SerializeSeq;
     use serde::{Deserialize, Deserializer, Serializer};
 
+    use super::super::real::Real2s;
+
     struct L<'a>(&'a [[f64; 2]]);
     impl serde::Serialize for L<'_> {
         fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-            super::real_pairs::serialize(self.0, s)
+            Real2s::serialize(self.0, s)
         }
     }
     #[derive(Deserialize)]
-    struct D(#[serde(with = "super::real_pairs")] Vec<[f64; 2]>);
+    struct D(#[serde(with = "Real2s")] Vec<[f64; 2]>);
 
     pub fn serialize<S: Serializer>(v: &[Vec<[f64; 2]>], s: S) -> Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(Some(v.len()))?;
@@ -296,6 +273,105 @@ mod real_polylines {
     pub fn deserialize<'de, De: Deserializer<'de>>(d: De) -> Result<Vec<Vec<[f64; 2]>>, De::Error> {
         let v: Vec<D> = Vec::deserialize(d)?;
         Ok(v.into_iter().map(|D(p)| p).collect())
+    }
+}
+
+/// Current positions after a converged increment (channel `/positions`, format 3): the node
+/// coordinates packed as binary. They are the bulk of a recording of a large mesh; packed,
+/// they cost the writer about half the CPU of JSON numbers (formatting and compressing) and
+/// compress to fewer bytes (measured in `docs/recording.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PackedPositions {
+    pub increment: usize,
+    #[serde(with = "Real")]
+    pub t: f64,
+    /// Current coordinates `X + u` of every node, bit for bit (NaN included): the values
+    /// x₀ y₀ x₁ y₁ … (2 per node) as IEEE 754 doubles, byte-shuffled — 8 planes, plane k
+    /// holding byte k (little-endian: k = 0 is the least significant) of every value — written
+    /// as lowercase hexadecimal (base16). In Python:
+    /// `numpy.frombuffer(bytes.fromhex(msg["nodes"]), numpy.uint8).reshape(8, -1).T.copy().view("<f8").reshape(-1, 2)`.
+    #[schemars(extend("contentEncoding" = "base16", "pattern" = "^([0-9a-f]{16})*$"))]
+    pub nodes: String,
+    /// Translation of each rigid body (same order as the model's `rigid`).
+    #[schemars(with = "Vec<Real2>")]
+    #[serde(with = "Real2s")]
+    pub rigid_offsets: Vec<[f64; 2]>,
+}
+
+const HEX: &[u8; 16] = b"0123456789abcdef";
+
+/// Append the shuffled hexadecimal text of the coordinates `nodes` (see [`PackedPositions`]).
+pub fn pack_nodes(out: &mut Vec<u8>, nodes: &[[f64; 2]]) {
+    out.reserve(32 * nodes.len());
+    for k in 0..8 {
+        for v in nodes.iter().flatten() {
+            let b = (v.to_bits() >> (8 * k)) as u8;
+            out.push(HEX[(b >> 4) as usize]);
+            out.push(HEX[(b & 15) as usize]);
+        }
+    }
+}
+
+impl PackedPositions {
+    /// `p` packed.
+    pub fn pack(p: &PositionsMessage) -> Self {
+        let mut text = Vec::new();
+        pack_nodes(&mut text, &p.nodes);
+        PackedPositions {
+            increment: p.increment,
+            t: p.t,
+            nodes: String::from_utf8(text).unwrap_or_default(),
+            rigid_offsets: p.rigid_offsets.clone(),
+        }
+    }
+
+    /// Append the JSON of `p` packed (the text of `serde_json::to_vec(&PackedPositions::pack(p))`,
+    /// without the intermediate string).
+    pub fn write_json(out: &mut Vec<u8>, p: &PositionsMessage) -> serde_json::Result<()> {
+        use super::real::Item;
+        out.extend_from_slice(b"{\"increment\":");
+        serde_json::to_writer(&mut *out, &p.increment)?;
+        out.extend_from_slice(b",\"t\":");
+        serde_json::to_writer(&mut *out, &Item(p.t))?;
+        out.extend_from_slice(b",\"nodes\":\"");
+        pack_nodes(out, &p.nodes);
+        out.extend_from_slice(b"\",\"rigid_offsets\":");
+        let mut ser = serde_json::Serializer::new(&mut *out);
+        Real2s::serialize(&p.rigid_offsets, &mut ser)?;
+        out.push(b'}');
+        Ok(())
+    }
+
+    /// The positions unpacked (refused when the text is not the hexadecimal of whole nodes).
+    pub fn unpack(&self) -> Result<PositionsMessage, String> {
+        let err = |what: &str| format!("positions of increment {}: {what}", self.increment);
+        let text = self.nodes.as_bytes();
+        if !text.len().is_multiple_of(32) {
+            return Err(err(&format!(
+                "{} hexadecimal digits, not a whole number of nodes (32 each)",
+                text.len()
+            )));
+        }
+        let digit = |c: u8| match c {
+            b'0'..=b'9' => Ok(c - b'0'),
+            b'a'..=b'f' => Ok(c - b'a' + 10),
+            _ => Err(err("not lowercase hexadecimal")),
+        };
+        let n = text.len() / 16;
+        let mut bits = vec![0u64; n];
+        for (i, pair) in text.chunks_exact(2).enumerate() {
+            let b = (digit(pair[0])? << 4) | digit(pair[1])?;
+            bits[i % n] |= (b as u64) << (8 * (i / n));
+        }
+        Ok(PositionsMessage {
+            increment: self.increment,
+            t: self.t,
+            nodes: bits
+                .chunks_exact(2)
+                .map(|v| [f64::from_bits(v[0]), f64::from_bits(v[1])])
+                .collect(),
+            rigid_offsets: self.rigid_offsets.clone(),
+        })
     }
 }
 
@@ -312,5 +388,40 @@ impl PositionsMessage {
                 .collect(),
             rigid_offsets: model.rigid.iter().map(|r| r.offset(t)).collect(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packed_positions_unpack_bit_for_bit() {
+        let p = PositionsMessage {
+            increment: 4,
+            t: 0.5,
+            nodes: vec![[1.0 / 3.0, -0.0], [f64::NAN, f64::INFINITY], [5e-324, -1e308]],
+            rigid_offsets: vec![[0.0, -0.25]],
+        };
+        let text = serde_json::to_string(&PackedPositions::pack(&p)).unwrap();
+        let mut direct = Vec::new();
+        PackedPositions::write_json(&mut direct, &p).unwrap();
+        assert_eq!(String::from_utf8(direct).unwrap(), text);
+        let back: PackedPositions = serde_json::from_str(&text).unwrap();
+        let q = back.unpack().unwrap();
+        let bits = |m: &PositionsMessage| -> Vec<u64> { m.nodes.iter().flatten().map(|x| x.to_bits()).collect() };
+        assert_eq!(bits(&p), bits(&q));
+        assert_eq!((q.increment, q.t, q.rigid_offsets), (4, 0.5, vec![[0.0, -0.25]]));
+        let mut bad = back.clone();
+        bad.nodes.truncate(bad.nodes.len() - 4);
+        assert!(bad.unpack().unwrap_err().contains("whole number of nodes"));
+        bad.nodes = "0123456789ABCDEF0123456789abcdef".into();
+        assert!(bad.unpack().unwrap_err().contains("hexadecimal"));
+        // plane 7 (the most significant bytes) comes last: 1.0 is 3ff0000000000000
+        let one = PackedPositions::pack(&PositionsMessage {
+            nodes: vec![[1.0, 0.0]],
+            ..p.clone()
+        });
+        assert_eq!(one.nodes, format!("{}f000{}3f00", "00".repeat(12), ""));
     }
 }

@@ -1,11 +1,16 @@
 //! What the solver reports, and to whom: record types (serde + JSON Schema) and the
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
+pub mod arrays;
 pub mod atomic_file;
 pub mod background;
 pub mod csv;
 mod failure;
+pub mod format3;
+pub mod foxglove;
+mod json_text;
 pub mod jsonl;
+pub mod mcap_out;
 pub mod mcap_sink;
 pub mod messages;
 mod observer;
@@ -211,6 +216,12 @@ impl ContactLabels {
     fn get(&self, pair: usize, slave: usize) -> (Arc<str>, Arc<str>) {
         let (name, slaves) = &self.pairs[pair];
         (name.clone(), slaves[slave].clone())
+    }
+
+    /// The same, or `None` for a pair or slave the model does not have.
+    pub fn label(&self, pair: usize, slave: usize) -> Option<(Arc<str>, Arc<str>)> {
+        let (name, slaves) = self.pairs.get(pair)?;
+        Some((name.clone(), slaves.get(slave)?.clone()))
     }
 }
 

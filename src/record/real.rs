@@ -18,6 +18,8 @@ pub struct Real;
 pub struct Real2;
 /// A list of [`Real`]s.
 pub struct Reals;
+/// A list of [`Real2`]s (points or vectors; its schema is that of `Vec<Real2>`).
+pub struct Real2s;
 
 /// The string written for a non-finite value (`None` when finite).
 pub fn non_finite_name(x: f64) -> Option<&'static str> {
@@ -42,8 +44,19 @@ pub fn parse_non_finite(s: &str) -> Option<f64> {
     }
 }
 
-/// Serialises like [`Real`] (for use inside sequences).
-struct Item(f64);
+/// Serialises like [`Real`] (for use inside sequences and columns).
+#[derive(Clone, Copy)]
+pub struct Item(pub f64);
+
+/// Serialises like [`Real2`] (for use inside sequences and columns).
+#[derive(Clone, Copy)]
+pub struct Item2(pub [f64; 2]);
+
+impl serde::Serialize for Item2 {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        Real2::serialize(&self.0, s)
+    }
+}
 
 impl serde::Serialize for Item {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
@@ -131,6 +144,36 @@ impl Reals {
     }
     pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
         d.deserialize_seq(SeqVisitor)
+    }
+}
+
+struct PairSeqVisitor;
+
+impl<'de> Visitor<'de> for PairSeqVisitor {
+    type Value = Vec<[f64; 2]>;
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a list of pairs of numbers")
+    }
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<[f64; 2]>, A::Error> {
+        // a corrupt file may announce any length: the hint is capped
+        let mut out = Vec::with_capacity(seq.size_hint().unwrap_or(0).min(4096));
+        while let Some([ItemDe(x), ItemDe(y)]) = seq.next_element::<[ItemDe; 2]>()? {
+            out.push([x, y]);
+        }
+        Ok(out)
+    }
+}
+
+impl Real2s {
+    pub fn serialize<S: Serializer>(x: &[[f64; 2]], s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(x.len()))?;
+        for v in x {
+            seq.serialize_element(&Item2(*v))?;
+        }
+        seq.end()
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+        d.deserialize_seq(PairSeqVisitor)
     }
 }
 

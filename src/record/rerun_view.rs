@@ -355,7 +355,7 @@ impl RerunView {
     }
 }
 
-fn bbox(pts: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+pub(crate) fn bbox(pts: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     for p in pts {
@@ -372,7 +372,7 @@ fn bbox(pts: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
 
 /// The part of segment `a b` inside the rectangle `w` (Liang–Barsky), so that far-reaching
 /// rigid surfaces do not dwarf the mesh in the view.
-fn clip(a: [f64; 2], b: [f64; 2], w: [[f64; 2]; 2]) -> Option<([f64; 2], [f64; 2])> {
+pub(crate) fn clip(a: [f64; 2], b: [f64; 2], w: [[f64; 2]; 2]) -> Option<([f64; 2], [f64; 2])> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for k in 0..2 {

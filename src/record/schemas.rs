@@ -1,10 +1,14 @@
-//! The channels of a contrail MCAP recording and the JSON Schemas of their messages,
-//! generated from the Rust types (schemars). The same text is embedded in every recording
-//! and checked into `schemas/` (`CONTRAIL_BLESS=1 cargo test --test recording_schemas`
-//! rewrites those files; the test fails when they and the types disagree).
+//! The channels of a contrail MCAP recording and the JSON Schemas of their messages.
+//! contrail's own schemas are generated from the Rust types (schemars) and carry the format
+//! version in their `$id`; the same text is embedded in every recording and checked into
+//! `schemas/` (`CONTRAIL_BLESS=1 cargo test --test recording_schemas` rewrites those files;
+//! the test fails when they and the types disagree). The schemas of format 2 stay in
+//! `schemas/format2/` for validating older recordings. The Foxglove channels embed the
+//! published schemas of `@foxglove/schemas` (see [`super::foxglove`]).
 
-use super::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PositionsMessage};
-use super::pressure::PressureRecord;
+use super::arrays::{ContactArrays, PressureArrays};
+use super::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
+use super::messages::{CrossingMessage, ModelRecord, PackedPositions};
 use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use std::path::Path;
 
@@ -18,16 +22,43 @@ pub struct ChannelSpec {
     /// File in `schemas/` that holds the schema.
     pub file: &'static str,
     pub description: &'static str,
-    schema: fn() -> schemars::Schema,
+    schema: Source,
+}
+
+/// Where a channel's schema comes from.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// Generated from a contrail type.
+    Generated(fn() -> schemars::Schema),
+    /// Published by someone else (Foxglove), embedded as it is.
+    Published(&'static str),
 }
 
 impl ChannelSpec {
-    /// The JSON Schema text (pretty-printed, newline-terminated).
+    /// The JSON Schema text (contrail's: pretty-printed, newline-terminated, with the format
+    /// version in its `$id`).
     pub fn schema_text(&self) -> String {
-        let mut s = serde_json::to_string_pretty(&(self.schema)()).unwrap_or_else(|_| "{}".into());
-        s.push('\n');
-        s
+        match self.schema {
+            Source::Generated(f) => {
+                let mut schema = f();
+                schema.insert("$id".into(), schema_id(self.file).into());
+                let mut s = serde_json::to_string_pretty(&schema).unwrap_or_else(|_| "{}".into());
+                s.push('\n');
+                s
+            }
+            Source::Published(text) => text.to_string(),
+        }
     }
+
+    /// A channel of contrail's own (not a Foxglove one).
+    pub fn is_contrail(&self) -> bool {
+        matches!(self.schema, Source::Generated(_))
+    }
+}
+
+/// The `$id` of a contrail schema: its file and the format version.
+pub fn schema_id(file: &str) -> String {
+    format!("urn:contrail:recording:format-{FORMAT_VERSION}:{file}")
 }
 
 pub const MODEL: &str = "/model";
@@ -39,16 +70,28 @@ pub const POSITIONS: &str = "/positions";
 pub const LOG: &str = "/log";
 pub const OUTCOME: &str = "/outcome";
 pub const PRESSURE: &str = "/pressure";
+pub const FOXGLOVE_LOG: &str = "/foxglove/log";
+pub const FOXGLOVE_SCENE: &str = "/foxglove/scene";
+pub const FOXGLOVE_REFERENCE: &str = "/foxglove/reference";
 
 /// MCAP header profile of a contrail recording.
 pub const PROFILE: &str = "contrail";
 /// Name of the MCAP metadata record with the run's facts.
 pub const METADATA_NAME: &str = "contrail.run";
 /// Version of the recording layout (channels and their message types).
-pub const FORMAT_VERSION: &str = "2";
-/// Format versions this build reads (1: every `/contact` point of every increment; 2: points
-/// that stay out of reach left out, see [`crate::record::mcap_sink::OutOfReach`]).
-pub const READABLE_VERSIONS: &[&str] = &["1", "2"];
+pub const FORMAT_VERSION: &str = "3";
+/// Format versions this build reads (1: one `/contact` message per point of every
+/// increment; 2: points that stay out of reach left out, see
+/// [`crate::record::mcap_sink::OutOfReach`]; 3: `/contact` and `/pressure` as one message
+/// of arrays per increment and pair, `/positions` packed, Foxglove channels beside).
+pub const READABLE_VERSIONS: &[&str] = &["1", "2", "3"];
+/// Schema names of the format-3 `/contact` and `/pressure` messages (formats 1 and 2 have
+/// `contrail.ContactPoint` and `contrail.Pressure`, one point or one profile of objects).
+pub const CONTACT_ARRAYS: &str = "contrail.ContactArrays";
+pub const PRESSURE_ARRAYS: &str = "contrail.PressureArrays";
+/// Schema name of the format-3 `/positions` message (node coordinates packed as binary;
+/// formats 1 and 2 have `contrail.Positions`, a list of pairs).
+pub const PACKED_POSITIONS: &str = "contrail.PackedPositions";
 
 /// Every channel, in the order they are registered in a recording.
 pub const CHANNELS: &[ChannelSpec] = &[
@@ -57,63 +100,84 @@ pub const CHANNELS: &[ChannelSpec] = &[
         schema_name: "contrail.Model",
         file: "model.schema.json",
         description: "static model: mesh topology, rigid surfaces as polylines, contact pairs (once, first)",
-        schema: || schemars::schema_for!(ModelRecord),
+        schema: Source::Generated(|| schemars::schema_for!(ModelRecord)),
     },
     ChannelSpec {
         topic: INCREMENT,
         schema_name: "contrail.Increment",
         file: "increment.schema.json",
         description: "one per converged increment: load level, step, iterations, cut-backs, residuals, monitor, reactions, wall time",
-        schema: || schemars::schema_for!(IncrementRecord),
+        schema: Source::Generated(|| schemars::schema_for!(IncrementRecord)),
     },
     ChannelSpec {
         topic: ITERATION,
         schema_name: "contrail.Iteration",
         file: "iteration.schema.json",
         description: "one per Newton iteration, failed attempts included: residual and energy norms, line search, active-set changes",
-        schema: || schemars::schema_for!(IterationRecord),
+        schema: Source::Generated(|| schemars::schema_for!(IterationRecord)),
     },
     ChannelSpec {
         topic: CONTACT,
-        schema_name: "contrail.ContactPoint",
-        file: "contact_point.schema.json",
-        description: "one per converged increment and slave point (a slave node out of reach: only where it leaves reach; readers restore the rest, format 2): segment, previous segment, xi, anchor, gap, forces, state",
-        schema: || schemars::schema_for!(ContactPointMessage),
+        schema_name: CONTACT_ARRAYS,
+        file: "contact.schema.json",
+        description: "one per converged increment and contact pair, every field an array over its slave points (slave nodes that stay out of reach left out where /positions has them; readers restore them): slave, segment, previous segment, xi, anchor, gap, forces, state, crossing, positions, normals, tangents",
+        schema: Source::Generated(|| schemars::schema_for!(ContactArrays)),
     },
     ChannelSpec {
         topic: CROSSING,
         schema_name: "contrail.Crossing",
         file: "crossing.schema.json",
         description: "one per segment crossing: A, B, xi_A, xi_B, delta rho, traction before and after transfer",
-        schema: || schemars::schema_for!(CrossingMessage),
+        schema: Source::Generated(|| schemars::schema_for!(CrossingMessage)),
     },
     ChannelSpec {
         topic: POSITIONS,
-        schema_name: "contrail.Positions",
+        schema_name: PACKED_POSITIONS,
         file: "positions.schema.json",
-        description: "current node coordinates and rigid-body offsets (every N-th increment and the last)",
-        schema: || schemars::schema_for!(PositionsMessage),
+        description: "current node coordinates (little-endian doubles, base64) and rigid-body offsets (every N-th increment and the last)",
+        schema: Source::Generated(|| schemars::schema_for!(PackedPositions)),
     },
     ChannelSpec {
         topic: LOG,
         schema_name: "contrail.Log",
         file: "log.schema.json",
         description: "warnings (cut-backs) and errors (failure, interruption) for humans",
-        schema: || schemars::schema_for!(LogRecord),
+        schema: Source::Generated(|| schemars::schema_for!(LogRecord)),
     },
     ChannelSpec {
         topic: OUTCOME,
         schema_name: "contrail.Outcome",
         file: "outcome.schema.json",
         description: "how the run ended: completed, failed (where, why, last residuals) or interrupted (last message)",
-        schema: || schemars::schema_for!(Outcome),
+        schema: Source::Generated(|| schemars::schema_for!(Outcome)),
     },
     ChannelSpec {
         topic: PRESSURE,
-        schema_name: "contrail.Pressure",
+        schema_name: PRESSURE_ARRAYS,
         file: "pressure.schema.json",
-        description: "contact pressure against arc length along the master, one per node-slave pair, at the increments that have /positions",
-        schema: || schemars::schema_for!(PressureRecord),
+        description: "contact pressure against arc length along the master, one per node-slave pair at the increments that have /positions, every field an array over the paired slave nodes",
+        schema: Source::Generated(|| schemars::schema_for!(PressureArrays)),
+    },
+    ChannelSpec {
+        topic: FOXGLOVE_LOG,
+        schema_name: "foxglove.Log",
+        file: "foxglove/foxglove.Log.json",
+        description: "/log as foxglove.Log, for Foxglove's Log panel",
+        schema: Source::Published(FOXGLOVE_LOG_SCHEMA),
+    },
+    ChannelSpec {
+        topic: FOXGLOVE_REFERENCE,
+        schema_name: "foxglove.SceneUpdate",
+        file: "foxglove/foxglove.SceneUpdate.json",
+        description: "the reference mesh for Foxglove's 3D panel, once at the start (plane z = 0, y up)",
+        schema: Source::Published(FOXGLOVE_SCENE_SCHEMA),
+    },
+    ChannelSpec {
+        topic: FOXGLOVE_SCENE,
+        schema_name: "foxglove.SceneUpdate",
+        file: "foxglove/foxglove.SceneUpdate.json",
+        description: "the model for Foxglove's 3D panel at the increments with a scene: deformed mesh, rigid surfaces, contact points coloured by state, a label (plane z = 0, y up)",
+        schema: Source::Published(FOXGLOVE_SCENE_SCHEMA),
     },
 ];
 
@@ -122,16 +186,16 @@ pub fn channel(topic: &str) -> Option<&'static ChannelSpec> {
     CHANNELS.iter().find(|c| c.topic == topic)
 }
 
-/// Write every schema into `dir`.
+/// Write every generated schema into `dir`.
 pub fn write_all(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
-    for c in CHANNELS {
+    for c in CHANNELS.iter().filter(|c| c.is_contrail()) {
         std::fs::write(dir.join(c.file), c.schema_text())?;
     }
     Ok(())
 }
 
-/// Files in `dir` that are missing or differ from the generated schemas.
+/// Files in `dir` that are missing or differ from the schemas embedded in a recording.
 pub fn stale(dir: &Path) -> Vec<String> {
     CHANNELS
         .iter()
