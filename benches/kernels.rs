@@ -113,6 +113,8 @@ fn crossing_point(scheme: TransferKind, mu: f64) -> PointProblem {
                 xi: 0.93,
                 t1: 0.8,
                 a11: 0.0626,
+                slave: [0.3, 0.018],
+                tangent: [1.0, 0.0],
             },
             seg_a: SegSource::Face([3, 1]),
             path: Path {
@@ -123,6 +125,7 @@ fn crossing_point(scheme: TransferKind, mu: f64) -> PointProblem {
         }),
         forced: None,
         stick_held: false,
+        multiplier: None,
         at_vertex: None,
     }
 }

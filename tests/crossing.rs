@@ -10,7 +10,8 @@
 //! ε_N = 1e6, ε_T = 1e3, μ = 100 (stick throughout). A kink θ of the deformed face adds a
 //! scheme-independent difference ≈ ε_T |ζ| θ (the penetrated point projects onto A's line and
 //! B with feet |ζ| θ apart); the stiff block keeps it near 1e-8 ε_T.
-//! References (notes, "History transfer"): with `continuous` and `path-length` the trial
+//! References (notes, "History transfer"): with `continuous`, `path-length` and `spatial` (the
+//! block stays put, so the slave's spatial increment is its slip) the trial
 //! traction is continuous across a boundary — |after − before| < 1e-6 ε_T, where "before" is
 //! the same-segment trial on A's extension in the same configuration; with `straightforward`
 //! the trial jumps by the amount the notes predict,
@@ -40,8 +41,8 @@ fn seg_len(m: &contrail::model::Model, seg: usize) -> f64 {
 }
 
 #[test]
-fn crossing_continuous_and_path_length_are_continuous() {
-    for scheme in ["continuous", "path-length"] {
+fn crossing_continuous_path_length_and_spatial_are_continuous() {
+    for scheme in ["continuous", "path-length", "spatial"] {
         let (_, mem) = run(scheme);
         assert_eq!(mem.crossings.len(), 3, "{scheme}: three boundaries are crossed");
         for (inc, c) in &mem.crossings {
@@ -110,7 +111,7 @@ fn crossing_straightforward_jumps_as_predicted() {
 #[test]
 fn crossing_completes_at_every_step_size() {
     for n in [100, 500, 2000] {
-        for scheme in ["continuous", "path-length", "straightforward"] {
+        for scheme in ["continuous", "path-length", "straightforward", "spatial"] {
             let m = common::scene(
                 "crossing",
                 &[

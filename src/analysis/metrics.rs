@@ -185,6 +185,18 @@ pub fn roughness(curve: &[(f64, f64)], at: &[f64], window: usize) -> Option<f64>
         .reduce(f64::max)
 }
 
+/// Crossing spikes of `curve` over `[x0, x1]`: the largest |F − cubic least-squares fit|
+/// over the points with `x` in the window, over the largest |F| of the whole curve (None
+/// with fewer than 5 points in the window).
+pub fn spike(curve: &[(f64, f64)], [x0, x1]: [f64; 2]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = (curve.iter().copied())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    let peak = pts.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let window: Vec<(f64, f64)> = pts.into_iter().filter(|p| p.0 >= x0 && p.0 <= x1).collect();
+    cubic_misfit(&window).filter(|_| peak > 0.0).map(|m| m / peak)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -247,6 +259,17 @@ mod tests {
         assert_eq!(max_relative_jump(&j), Some(1.0));
         assert_eq!(max_relative_jump(&[(4.0, 3.0)]), Some(0.25));
         assert_eq!(max_jump(&[]), None);
+    }
+
+    #[test]
+    fn spike_is_the_misfit_over_the_window_relative_to_the_peak() {
+        let mut c = line(40, |x| 2.0 + x - 0.1 * x * x * x, 0.0, 4.0);
+        assert!(spike(&c, [1.0, 3.0]).unwrap() < 1e-12);
+        c[20].1 += 0.01; // x = 2
+        let peak = c.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+        let s = spike(&c, [1.0, 3.0]).unwrap() * peak;
+        assert!(s > 0.005 && s < 0.01, "{s}");
+        assert!(spike(&c, [10.0, 11.0]).is_none());
     }
 
     #[test]

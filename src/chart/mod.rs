@@ -7,7 +7,7 @@ mod pareto;
 mod stability;
 
 pub use pareto::{mark_front, pareto, ParetoPoint};
-pub use stability::{marker_shape, stability, Cell};
+pub use stability::{marker_shape, stability, stability_by, Cell};
 
 use crate::sweep::IndexRow;
 use plotters::prelude::*;
@@ -31,7 +31,7 @@ impl ChartError {
 }
 
 /// Metric names accepted by `pareto` (columns of the index).
-pub const METRICS: [&str; 9] = [
+pub const METRICS: [&str; 10] = [
     "err_max_rel",
     "err_max",
     "err_rms",
@@ -40,6 +40,7 @@ pub const METRICS: [&str; 9] = [
     "jump_max",
     "jump_rel_max",
     "roughness",
+    "spike_rel",
     "analytic_err",
 ];
 
@@ -55,6 +56,7 @@ pub fn metric(row: &IndexRow, name: &str) -> Option<f64> {
         "jump_max" => m.jump_max,
         "jump_rel_max" => m.jump_rel_max,
         "roughness" => m.roughness,
+        "spike_rel" => m.spike_rel,
         "analytic_err" => m.analytic_err,
         _ => None,
     };

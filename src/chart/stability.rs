@@ -1,7 +1,9 @@
-//! `contrail chart stability`: where each transfer scheme fails. One panel per scheme, the
-//! two swept keys on the axes (categorical, sorted by value), one marker per run: colour =
-//! load level reached (red 0 → amber → green 1), shape = failure kind (filled circle =
-//! passed; see [`super::marker_shape`]). Runs sharing a cell are spread side by side.
+//! `contrail chart stability`: where each transfer scheme (or each method) fails. One panel
+//! per scheme — or per value of another key, or per family (`--panel`), at most four panels
+//! a row — the two swept keys on the axes (categorical, sorted by value), one marker per
+//! run: colour = load level reached (red 0 → amber → green 1), shape = failure kind (filled
+//! circle = passed; see [`super::marker_shape`]). Runs sharing a cell are spread side by
+//! side.
 
 use super::{format_of, load_colour, value_cmp, ChartError, Format};
 use crate::study::FailureKind;
@@ -24,21 +26,28 @@ pub struct Cell {
     pub load_fraction: f64,
 }
 
-fn panel_of(r: &IndexRow) -> String {
-    r.params
-        .get("contact.transfer")
-        .cloned()
-        .unwrap_or_else(|| r.transfer.clone())
+/// The panel of a run: its family (`panel = "family"`), the value of another swept key, or
+/// (`None`) its transfer scheme.
+fn panel_of(r: &IndexRow, panel: Option<&str>) -> String {
+    match panel {
+        Some("family") => r.family.clone(),
+        Some(key) => r.params.get(key).cloned().unwrap_or_default(),
+        None => r
+            .params
+            .get("contact.transfer")
+            .cloned()
+            .unwrap_or_else(|| r.transfer.clone()),
+    }
 }
 
-/// The runs that have both keys.
-pub fn cells(rows: &[IndexRow], x_key: &str, y_key: &str) -> Vec<Cell> {
+/// The runs that have both keys, panels by [`panel_of`].
+pub fn cells_by(rows: &[IndexRow], x_key: &str, y_key: &str, panel: Option<&str>) -> Vec<Cell> {
     rows.iter()
         .filter(|r| r.status != "interrupted")
         .filter_map(|r| {
             Some(Cell {
                 id: r.id.clone(),
-                panel: panel_of(r),
+                panel: panel_of(r, panel),
                 x: r.params.get(x_key)?.clone(),
                 y: r.params.get(y_key)?.clone(),
                 passed: r.passed(),
@@ -237,12 +246,14 @@ where
         .map_err(e)?;
     let xs = sorted_values(cells.iter().map(|c| &c.x));
     let ys = sorted_values(cells.iter().map(|c| &c.y));
-    let panels: BTreeSet<&str> = cells.iter().map(|c| c.panel.as_str()).collect();
+    let mut panels: Vec<&str> = cells.iter().map(|c| c.panel.as_str()).collect::<BTreeSet<_>>().into_iter().collect();
+    panels.sort_by(|a, b| value_cmp(a, b));
     let (h, _) = (root.dim_in_pixel().1, ());
     let (main, band) = root.split_vertically(h.saturating_sub(40));
     let kinds: BTreeSet<Option<FailureKind>> = cells.iter().map(|c| c.kind).collect();
     draw_legend(&band, &kinds)?;
-    let areas = main.split_evenly((1, panels.len().max(1)));
+    let (rows, cols) = grid(panels.len());
+    let areas = main.split_evenly((rows, cols));
     for (p, area) in panels.iter().zip(areas.iter()) {
         let cs: Vec<&Cell> = cells.iter().filter(|c| c.panel == *p).collect();
         draw_panel(area, p, &cs, (&xs, &ys), keys)?;
@@ -250,8 +261,14 @@ where
     Ok(())
 }
 
+/// Rows and columns of the panels: at most four a row.
+fn grid(panels: usize) -> (usize, usize) {
+    let cols = panels.clamp(1, 4);
+    (panels.max(1).div_ceil(cols), cols)
+}
+
 /// Draw the stability map of `rows` over `x_key` × `y_key` (`--set` keys swept in the plan)
-/// into `path` (.svg or .png); returns the plotted cells.
+/// into `path` (.svg or .png), one panel per transfer scheme; returns the plotted cells.
 pub fn stability(
     rows: &[IndexRow],
     x_key: &str,
@@ -259,7 +276,19 @@ pub fn stability(
     title: &str,
     path: &Path,
 ) -> Result<Vec<Cell>, ChartError> {
-    let cs = cells(rows, x_key, y_key);
+    stability_by(rows, (x_key, y_key), None, title, path)
+}
+
+/// [`stability`] with the panels chosen by `panel` (`"family"`, another swept key, or
+/// `None` for the transfer scheme).
+pub fn stability_by(
+    rows: &[IndexRow],
+    (x_key, y_key): (&str, &str),
+    panel: Option<&str>,
+    title: &str,
+    path: &Path,
+) -> Result<Vec<Cell>, ChartError> {
+    let cs = cells_by(rows, x_key, y_key, panel);
     if cs.is_empty() {
         let keys: BTreeSet<&String> = rows.iter().flat_map(|r| r.params.keys()).collect();
         return Err(ChartError::new(
@@ -270,8 +299,8 @@ pub fn stability(
             ),
         ));
     }
-    let panels = cs.iter().map(|c| &c.panel).collect::<BTreeSet<_>>().len() as u32;
-    let size = (40 + 520 * panels, 660);
+    let (rows, cols) = grid(cs.iter().map(|c| &c.panel).collect::<BTreeSet<_>>().len());
+    let size = (40 + 520 * cols as u32, 60 + 600 * rows as u32);
     let r = match format_of(path)? {
         Format::Svg => draw(
             SVGBackend::new(path, size).into_drawing_area(),

@@ -15,7 +15,7 @@ pub struct ChartArgs {
 pub enum ChartKind {
     /// Error against wall time (log–log), one series per family, Pareto front marked.
     Pareto(ParetoArgs),
-    /// Pass/fail map over two swept keys, one panel per transfer scheme.
+    /// Pass/fail map over two swept keys, one panel per transfer scheme (or `--panel`).
     Stability(StabilityArgs),
 }
 
@@ -54,6 +54,10 @@ pub struct StabilityArgs {
     /// Swept key on the vertical axis, e.g. contact.eps_t.
     #[arg(long)]
     pub y: String,
+    /// One panel per value of this swept key, or `family` (the plan's family of the run);
+    /// default: per transfer scheme.
+    #[arg(long)]
+    pub panel: Option<String>,
 }
 
 fn load(c: &Common) -> anyhow::Result<(Index, Vec<IndexRow>)> {
@@ -111,8 +115,8 @@ pub fn chart(a: ChartArgs) -> anyhow::Result<ExitCode> {
             let (index, rows) = load(&s.common)?;
             let title = s.common.title.clone().unwrap_or_else(|| index.plan.clone());
             for out in outputs(&s.common, "stability") {
-                let cells =
-                    contrail::chart::stability(&rows, &s.x, &s.y, &title, &out).map_err(|e| BadInput(e.to_string()))?;
+                let cells = contrail::chart::stability_by(&rows, (&s.x, &s.y), s.panel.as_deref(), &title, &out)
+                    .map_err(|e| BadInput(e.to_string()))?;
                 println!(
                     "written {} ({} runs, {} passed)",
                     out.display(),

@@ -253,6 +253,16 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
         );
         row(&mut o, "time spent", time_split(s));
+        if s.augmentations > 0 {
+            row(
+                &mut o,
+                "augmented",
+                format!(
+                    "{} multiplier updates (augmented Lagrangian: each one more solve of its increment)",
+                    s.augmentations
+                ),
+            );
+        }
         if let Some(line) = iterative_line(&s.iterative) {
             row(&mut o, "linear solver", line);
         }

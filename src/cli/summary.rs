@@ -188,6 +188,7 @@ mod tests {
             contact_point: [0.0; 2],
             normal: [0.0, 1.0],
             tangent: [1.0, 0.0],
+            multiplier: [f64::NAN; 2],
         }
     }
 

@@ -3,9 +3,9 @@
 //! converts them into serialisable records; contact never depends on `record/`.
 
 use super::law::ContactState;
-use super::point::{Path, PointEval};
+use super::point::{Multiplier, Path, PointEval};
 use super::system::{local_problem, stored, Config, PointHistory, PointNow};
-use crate::model::{ContactPair, Slave};
+use crate::model::{ContactPair, Enforcement, Slave};
 
 /// State of one contact slave point at the current iterate, compared with the last
 /// converged increment.
@@ -38,17 +38,21 @@ pub struct PointSnapshot {
     /// Unit normal and unit tangent of the master at the contact point.
     pub normal: [f64; 2],
     pub tangent: [f64; 2],
+    /// Augmented-Lagrangian multiplier estimates the last solve of the increment used: the
+    /// normal force `λ_N` and the tangential traction `λ_T` along the unit tangent (NaN in a
+    /// penalty pair, and `λ_T` NaN for a point without friction history).
+    pub multiplier: [f64; 2],
 }
 
 impl PointSnapshot {
     pub(super) fn new(
         cfg: &Config,
-        pair_index: usize,
-        slave_index: usize,
+        (pair_index, slave_index): (usize, usize),
         slave: Slave,
         pair: &ContactPair,
         now: &PointNow,
         hist: &PointHistory,
+        multiplier: Multiplier,
     ) -> Self {
         let pos = match (slave, now.eval) {
             (Slave::Node(n), _) => {
@@ -79,7 +83,12 @@ impl PointSnapshot {
             contact_point: [f64::NAN; 2],
             normal: [f64::NAN; 2],
             tangent: [f64::NAN; 2],
+            multiplier: [f64::NAN; 2],
         };
+        let augmented = matches!(pair.enforcement, Enforcement::Augmented { .. });
+        if augmented {
+            r.multiplier[0] = multiplier.normal;
+        }
         if let Some(e) = now.eval {
             let sq = e.proj.a11.sqrt();
             r.xi = e.proj.xi;
@@ -97,6 +106,9 @@ impl PointSnapshot {
             r.contact_point = e.proj.rho;
             r.normal = e.proj.normal();
             r.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
+            if augmented && e.state != ContactState::Open && hist.closed {
+                r.multiplier[1] = e.t1_carried / sq;
+            }
         }
         r
     }
@@ -141,6 +153,7 @@ pub(super) fn crossing_event(
     old: &PointHistory,
     e: &PointEval<f64>,
     path: Path,
+    multiplier: Option<Multiplier>,
 ) -> CrossingEvent {
     let pair = &cfg.model.contacts[ip];
     let slave = pair.slaves[is];
@@ -154,7 +167,8 @@ pub(super) fn crossing_event(
         direction: 0,
         between: 0.0,
     };
-    let (ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same, None)));
+    let (mut ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same, None)));
+    ext.multiplier = multiplier;
     let ext = ext.evaluate_f64();
     CrossingEvent {
         pair: ip,

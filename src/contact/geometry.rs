@@ -14,6 +14,7 @@
 //! [`super::search`] walks there.
 
 use super::scalar::{Scalar, V2};
+use super::surface::bezier::BezierSegment;
 use super::surface::face::FaceSegment;
 use super::surface::hermite::HermiteSegment;
 use super::surface::rigid_arc::RigidArc;
@@ -29,6 +30,8 @@ pub enum SegmentGeom<S: Scalar> {
     Face(FaceSegment<S>),
     /// C1-smoothed segment of a deformable face (cubic Hermite through its neighbours).
     Hermite(HermiteSegment<S>),
+    /// C1-smoothed segment of a deformable face (quadratic Bézier arcs between midpoints).
+    Bezier(BezierSegment<S>),
     /// Straight piece of a rigid outline.
     RigidLine(RigidLine),
     /// Circular-arc piece of a rigid outline.
@@ -69,6 +72,11 @@ impl<S: Scalar> SegmentGeom<S> {
         SegmentGeom::Hermite(HermiteSegment { x0, x1, x2, x3 })
     }
 
+    /// Bézier face segment `x1 → x2` with its neighbouring nodes (see [`BezierSegment`]).
+    pub fn bezier(x0: Option<V2<S>>, x1: V2<S>, x2: V2<S>, x3: Option<V2<S>>) -> Self {
+        SegmentGeom::Bezier(BezierSegment { x0, x1, x2, x3 })
+    }
+
     /// Rigid piece translated by `offset`.
     pub fn from_piece(piece: &Piece, offset: [f64; 2]) -> Self {
         match *piece {
@@ -94,6 +102,7 @@ impl<S: Scalar> SegmentGeom<S> {
         match self {
             SegmentGeom::Face(f) => f,
             SegmentGeom::Hermite(h) => h,
+            SegmentGeom::Bezier(b) => b,
             SegmentGeom::RigidLine(l) => l,
             SegmentGeom::RigidArc(a) => a,
         }
@@ -112,6 +121,11 @@ impl<S: Scalar> SegmentGeom<S> {
     /// Current length of the segment (arc length for arcs).
     pub fn length(&self) -> S {
         self.surface().length()
+    }
+
+    /// Signed arc length along the segment's curve from `ξ = from` to `ξ = to`.
+    pub fn arc_length(&self, from: S, to: S) -> S {
+        self.surface().arc_length(from, to)
     }
 }
 

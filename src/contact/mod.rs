@@ -1,5 +1,6 @@
 //! Node-to-segment frictional contact in the covariant description.
 
+pub mod augmented;
 pub mod events;
 pub mod geometry;
 pub mod law;

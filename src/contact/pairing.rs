@@ -66,7 +66,9 @@ pub struct Pairing {
     pub pinned: bool,
 }
 
-/// Locate slave `slave` of `pair`, starting from `start` when it is tracked.
+/// Locate slave `slave` of `pair`, starting from `start` when it is tracked. `gap_shift`
+/// (`λ_N/ε_N` of an augmented point, else 0) is taken off the gap the rules see: such a
+/// point is in contact while `ζ < λ_N/ε_N`.
 pub fn locate(
     cfg: &Config,
     pair: &ContactPair,
@@ -74,6 +76,7 @@ pub fn locate(
     start: Option<usize>,
     closed_before: bool,
     grid: &mut Option<SegmentGrid>,
+    gap_shift: f64,
 ) -> Pairing {
     let rs = cfg.slave_pos(slave);
     let geom = |s: usize| cfg.segment(pair, s);
@@ -82,7 +85,7 @@ pub fn locate(
     let (found, wedge) = match start {
         Some(s0) => {
             let loc = nearest_face(walk(s0, rs, &geom, &nb, count), rs, &geom, &nb);
-            let faceted = pair.smoothing == Smoothing::None;
+            let faceted = pair.face_smoothing() == Smoothing::None;
             match concave_wedge(loc, s0, rs, &geom, &nb).filter(|_| faceted) {
                 Some(held) => (Some(held), true),
                 None => (Some(loc), false),
@@ -94,9 +97,10 @@ pub fn locate(
             (closest(rs, g.candidates(rs), &geom, pair.search_radius), false)
         }
     };
-    let Some(loc) = found else {
+    let Some(mut loc) = found else {
         return Pairing::default();
     };
+    loc.gap -= gap_shift;
     if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
         return Pairing::default(); // out of reach: untracked
     }
@@ -149,7 +153,7 @@ pub fn held(cfg: &Config, pair: &ContactPair, slave: Slave, segment: Option<usiz
         located: Some(loc),
         excluded: false,
         // a C1-smoothed face has no concave kink to be pinned to
-        pinned: pair.smoothing == Smoothing::None && concave_wedge(loc, s, rs, &geom, &nb).is_some(),
+        pinned: pair.face_smoothing() == Smoothing::None && concave_wedge(loc, s, rs, &geom, &nb).is_some(),
     }
 }
 

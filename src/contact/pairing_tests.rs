@@ -39,6 +39,7 @@ fn outline_model(p: [[f64; 2]; 3], slaves: &[[f64; 2]]) -> Model {
         search_radius: 1.0,
         owned_vertices: Vec::new(),
         smoothing: crate::model::Smoothing::None,
+        enforcement: crate::model::Enforcement::Penalty,
     });
     m
 }
@@ -54,7 +55,7 @@ fn locate_all(m: &Model, start: Option<usize>) -> Vec<Pairing> {
     let mut grid = None;
     pair.slaves
         .iter()
-        .map(|&s| locate(&cfg, pair, s, start, false, &mut grid))
+        .map(|&s| locate(&cfg, pair, s, start, false, &mut grid, 0.0))
         .collect()
 }
 

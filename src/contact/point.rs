@@ -2,15 +2,18 @@
 //! stick, slip, and the crossing step in which the element spans segments `A` and `B`).
 //!
 //! Virtual work of the point (Konyukhov & Schweizerhof, Comput Mech 35 (2005); notes
-//! §"Variations"): `δW = ε_N ζ δζ − T_1 δξ` for `ζ < 0`, zero otherwise, so the local
-//! residual (internal force) is `r = ε_N ζ ∇ζ − T_1 ∇ξ` and the tangent
-//! `K = ε_N (∇ζ ∇ζᵀ + ζ ∇²ζ) − ∇ξ ∇T_1ᵀ − T_1 ∇²ξ`,
+//! §"Variations"): `δW = −N δζ − T_1 δξ` with the normal force `N = λ_N − ε_N ζ` while it is
+//! positive (`λ_N = 0` for a penalty pair; an augmented pair's multiplier, see [`Multiplier`]),
+//! zero otherwise, so the local residual (internal force) is `r = −N ∇ζ − T_1 ∇ξ` and the
+//! tangent `K = ε_N ∇ζ ∇ζᵀ − N ∇²ζ − ∇ξ ∇T_1ᵀ − T_1 ∇²ξ`,
 //! where `∇` is taken with respect to the current positions of the nodes involved (slave,
-//! nodes of `B` and, during a crossing step, nodes of `A`). `ζ(q)`, `ξ(q)` and `T_1(q)` are
+//! nodes of `B` and, during a crossing step, nodes of `A`; four nodes per segment on a
+//! C1-smoothed face). `ζ(q)`, `ξ(q)` and `T_1(q)` are
 //! evaluated in second-order dual numbers, which yields `δζ`, `δξ` (notes formulas,
 //! including the `ζ n·δρ_1` term) and their linearisations exactly; the unsymmetric
 //! frictional blocks come from `∇T_1`. Each state's tangent is checked against finite
-//! differences in the tests.
+//! differences in the tests (`point_tests.rs`, and `point_methods_tests.rs` for every scheme
+//! on faceted and smoothed faces and for augmented points).
 //!
 //! Sign: `T_1` acts on the slave (see [`super::law`]), so the slave's share of `r` is
 //! `−T_1 ρ^1` and the force on the slave is `+T`.
@@ -36,6 +39,8 @@ pub enum SegSource {
     /// A C1-smoothed deformable segment: the slots of the neighbour before (none at a free
     /// end), the two ends, and the neighbour after.
     Hermite([Option<usize>; 4]),
+    /// The same slots, smoothed by quadratic Bézier arcs (see `surface::bezier`).
+    Bezier([Option<usize>; 4]),
     /// A rigid piece translated by an offset.
     Rigid(Piece, [f64; 2]),
 }
@@ -100,6 +105,25 @@ pub struct PointProblem {
     /// `Some(±1)`: the point is in the wedge of a concave vertex of the master at that end of
     /// `B` and is pinned to the vertex (point-to-node form, [`super::vertex`]).
     pub at_vertex: Option<f64>,
+    /// The augmented-Lagrangian multipliers of the point (`None`: penalty alone).
+    pub multiplier: Option<Multiplier>,
+}
+
+/// Multipliers of an augmented-Lagrangian point, held fixed within a Newton solve and
+/// updated between solves (see `contact::augmented`):
+///
+/// - the normal force is `N = ⟨λ_N − ε_N ζ⟩` (the point is closed when it is positive), so
+///   the penalty only has to supply the difference to the multiplier;
+/// - the tangential trial traction is the scheme's trial from the last converged increment
+///   plus `Λ` (a physical traction along the unit tangent, `+ Λ √a11` in covariant form):
+///   `λ_T = t^(n) + Λ` is the tangential multiplier, and the penalty part only measures the
+///   slip of this increment.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Multiplier {
+    /// `λ_N ≥ 0`.
+    pub normal: f64,
+    /// `Λ`, the correction of this increment to the carried traction.
+    pub tangential: f64,
 }
 
 /// Result of a point evaluation in scalar type `S`.
@@ -110,6 +134,11 @@ pub struct PointEval<S: Scalar> {
     pub t1_trial: S,
     pub t1: S,
     pub state: ContactState,
+    /// The scheme's trial without the slip of this increment (`ε_T = 0`): the traction
+    /// carried from the last converged increment to `B`, covariant, plus the multiplier
+    /// correction `Λ √a11` (the tangential multiplier `λ_T`). Only worked out for an
+    /// augmented point (zero otherwise).
+    pub t1_carried: f64,
 }
 
 fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
@@ -119,6 +148,10 @@ fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
             let at = |i: &Option<usize>| i.map(|i| q[i]);
             SegmentGeom::hermite(at(p), q[a.expect("end")], q[b.expect("end")], at(n))
         }
+        SegSource::Bezier([p, a, b, n]) => {
+            let at = |i: &Option<usize>| i.map(|i| q[i]);
+            SegmentGeom::bezier(at(p), q[a.expect("end")], q[b.expect("end")], at(n))
+        }
         SegSource::Rigid(p, off) => SegmentGeom::from_piece(p, *off),
     }
 }
@@ -126,74 +159,57 @@ fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
 impl PointProblem {
     /// Evaluate gap, projection, trial and returned traction for node positions `q`.
     pub fn evaluate<S: Scalar>(&self, q: &[V2<S>]) -> PointEval<S> {
-        let rs = match self.slave {
-            SlaveSource::Node(i) => q[i],
-            SlaveSource::Fixed(p) => lift(p),
-        };
+        let rs = self.slave_position(q);
         let gb = seg_geom(&self.seg_b, q);
         let proj = match self.at_vertex {
             Some(end) => vertex::pinned_projection(&gb, rs, end),
             None => gb.project(rs),
         };
         let zero = S::from(0.0);
+        let lambda_n = self.multiplier.map_or(0.0, |m| m.normal);
         let open = match self.forced {
             Some(state) => state == ContactState::Open,
-            None => !penetrating(proj.gap.re(), proj.a11.re()),
+            None => !penetrating(proj.gap.re() - lambda_n / self.law.eps_n, proj.a11.re()),
+        };
+        let mut eval = PointEval {
+            proj,
+            normal_force: zero,
+            t1_trial: zero,
+            t1: zero,
+            state: ContactState::Open,
+            t1_carried: 0.0,
         };
         if open {
-            return PointEval {
-                proj,
-                normal_force: zero,
-                t1_trial: zero,
-                t1: zero,
-                state: ContactState::Open,
-            };
+            return eval;
         }
-        let normal_force = -proj.gap * self.law.eps_n;
+        eval.normal_force = -proj.gap * self.law.eps_n + lambda_n;
         let Some(c) = self.closed else {
-            let state = if self.law.mu > 0.0 {
+            // the first closing increment is frictionless: its end fixes the anchor
+            eval.state = if self.law.mu > 0.0 {
                 ContactState::Stick
             } else {
                 ContactState::Slip
             };
-            return PointEval {
-                proj,
-                normal_force,
-                t1_trial: zero,
-                t1: zero,
-                state,
-            };
+            return eval;
         };
-        let ga = seg_geom(&c.seg_a, q);
-        let (rho_a, rho1_a) = ga.eval(S::from(c.stored.xi));
-        let arc_length = match c.path.direction {
-            0 => (proj.xi - c.stored.xi) * proj.a11.sqrt(),
-            1 => {
-                let la = dot_self(rho1_a).sqrt();
-                la * (1.0 - c.stored.xi) + c.path.between + (proj.xi + 1.0) * proj.a11.sqrt()
-            }
-            _ => {
-                let la = dot_self(rho1_a).sqrt();
-                -(la * (1.0 + c.stored.xi) + c.path.between + (-proj.xi + 1.0) * proj.a11.sqrt())
-            }
-        };
-        let input = TransferInput {
-            eps_t: self.law.eps_t,
-            stored: c.stored,
-            current: proj,
-            old: OldPoint {
-                rho: rho_a,
-                rho1: rho1_a,
-            },
-            arc_length,
-            crossing: c.path.direction != 0,
-        };
+        let input = self.transfer_input(&c, q, &gb, proj);
         let mut t1_trial = self.scheme.trial(&input);
+        let mut carried = match self.multiplier {
+            Some(_) => self.scheme.trial(&TransferInput { eps_t: 0.0, ..input }).re(),
+            None => 0.0,
+        };
         if let Some(g0) = c.touch_gap.filter(|g| *g > 0.0) {
             // anchor at the point of first touch (see [`Closed`])
             let penetration = -proj.gap;
-            t1_trial *= penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
+            let one_minus_s = penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
+            t1_trial *= one_minus_s;
+            carried *= one_minus_s.re();
         }
+        if let Some(m) = self.multiplier {
+            t1_trial += proj.a11.sqrt() * m.tangential;
+            carried += proj.a11.re().sqrt() * m.tangential;
+        }
+        let normal_force = eval.normal_force;
         let (t1, state) = if self.law.mu > 0.0 && normal_force.re() <= 0.0 {
             // touching without pressure (see [`touching`]): no friction to transmit, and no
             // friction stiffness either (the slip branch's `μ ∂N` would couple the normal
@@ -205,11 +221,56 @@ impl PointProblem {
             return_map(&self.law, t1_trial, normal_force, proj.a11)
         };
         PointEval {
-            proj,
-            normal_force,
             t1_trial,
             t1,
             state,
+            t1_carried: carried,
+            ..eval
+        }
+    }
+
+    fn slave_position<S: Scalar>(&self, q: &[V2<S>]) -> V2<S> {
+        match self.slave {
+            SlaveSource::Node(i) => q[i],
+            SlaveSource::Fixed(p) => lift(p),
+        }
+    }
+
+    /// What the transfer schemes see of a point closed at the last converged increment:
+    /// the old contact point on `A` now, the arc length travelled along the (smoothed)
+    /// master surface, and, for the spatial scheme, the stored slave position's closest
+    /// point on `B`.
+    fn transfer_input<S: Scalar>(
+        &self,
+        c: &Closed,
+        q: &[V2<S>],
+        gb: &SegmentGeom<S>,
+        proj: Projection<S>,
+    ) -> TransferInput<S> {
+        let ga = seg_geom(&c.seg_a, q);
+        let xi_a = S::from(c.stored.xi);
+        let (rho_a, rho1_a) = ga.eval(xi_a);
+        let one = S::from(1.0);
+        let arc_length = match c.path.direction {
+            0 => gb.arc_length(xi_a, proj.xi),
+            1 => ga.arc_length(xi_a, one) + c.path.between + gb.arc_length(-one, proj.xi),
+            _ => -(ga.arc_length(-one, xi_a) + c.path.between + gb.arc_length(proj.xi, one)),
+        };
+        let stored_slave_xi = match self.scheme {
+            TransferKind::Spatial => gb.project(lift(c.stored.slave)).xi,
+            _ => S::from(0.0),
+        };
+        TransferInput {
+            eps_t: self.law.eps_t,
+            stored: c.stored,
+            current: proj,
+            old: OldPoint {
+                rho: rho_a,
+                rho1: rho1_a,
+            },
+            arc_length,
+            crossing: c.path.direction != 0,
+            stored_slave_xi,
         }
     }
 
@@ -251,6 +312,8 @@ impl PointProblem {
         r[..N].fill(0.0);
         k[..N * N].fill(0.0);
         if e.state != ContactState::Open {
+            // r = −N ∇ζ − T_1 ∇ξ, K = −∇ζ ∇Nᵀ − N ∇²ζ − ∇ξ ∇T_1ᵀ − T_1 ∇²ξ; with the penalty
+            // N = λ_N − ε_N ζ, so ∇N = −ε_N ∇ζ
             let zeta = e.proj.gap;
             let xi = e.proj.xi;
             let gz = zeta.v1.unwrap_generic(U1, Const::<N>);
@@ -258,19 +321,16 @@ impl PointProblem {
             let gx = xi.v1.unwrap_generic(U1, Const::<N>);
             let hx = xi.v2.unwrap_generic(Const::<N>, Const::<N>);
             let gt = e.t1.v1.unwrap_generic(U1, Const::<N>);
-            let (en, z, t) = (self.law.eps_n, zeta.re, e.t1.re);
+            let (en, n, t) = (self.law.eps_n, e.normal_force.re, e.t1.re);
             for i in 0..N {
-                r[i] = en * z * gz[i] - t * gx[i];
+                r[i] = -n * gz[i] - t * gx[i];
                 for j in 0..N {
-                    k[N * i + j] = en * (gz[i] * gz[j] + z * hz[(i, j)]) - gx[i] * gt[j] - t * hx[(i, j)];
+                    k[N * i + j] = en * gz[i] * gz[j] - n * hz[(i, j)] - gx[i] * gt[j] - t * hx[(i, j)];
                 }
             }
             if self.at_vertex.is_some() && self.law.mu > 0.0 {
                 // ξ is pinned (∇ξ = 0 above): the traction acts along the vertex tangent
-                let rs = match self.slave {
-                    SlaveSource::Node(i) => q[i],
-                    SlaveSource::Fixed(p) => lift(p),
-                };
+                let rs = self.slave_position(&q[..self.n_nodes]);
                 vertex::add_tangential(rs, e.proj.rho, e.t1, e.proj.a11, &mut r[..N], &mut k[..N * N]);
             }
         }
@@ -286,6 +346,7 @@ impl PointProblem {
             t1_trial: e.t1_trial.re,
             t1: e.t1.re,
             state: e.state,
+            t1_carried: e.t1_carried,
         }
     }
 }
@@ -309,10 +370,10 @@ pub fn touching(gap: f64, a11: f64) -> bool {
     gap.abs() <= TOUCH_TOLERANCE * 2.0 * a11.sqrt()
 }
 
-fn dot_self<S: Scalar>(a: V2<S>) -> S {
-    a[0] * a[0] + a[1] * a[1]
-}
-
 #[cfg(test)]
 #[path = "point_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "point_methods_tests.rs"]
+mod methods_tests;

@@ -26,6 +26,8 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
                 xi: 0.93,
                 t1: stored_t1,
                 a11: 0.0626,
+                slave: [f64::NAN; 2],
+                tangent: [f64::NAN; 2],
             },
             seg_a: SegSource::Face([3, 1]),
             path: Path {
@@ -37,10 +39,11 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     }
 }
 
-fn fd_check(p: &PointProblem, expect: ContactState) {
+pub(super) fn fd_check(p: &PointProblem, expect: ContactState) {
     let n = 2 * p.n_nodes;
     let mut r = vec![0.0; n];
     let mut k = vec![0.0; n * n];
@@ -191,6 +194,8 @@ fn rigid_arc_master_tangent_matches_fd() {
                 xi: 0.1,
                 t1: 0.01,
                 a11: 0.9,
+                slave: [f64::NAN; 2],
+                tangent: [f64::NAN; 2],
             },
             seg_a: SegSource::Rigid(arc, [0.0, 0.0]),
             path: Path {
@@ -202,6 +207,7 @@ fn rigid_arc_master_tangent_matches_fd() {
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     };
     fd_check(&p, ContactState::Stick);
     p.law.mu = 0.01;
@@ -244,6 +250,8 @@ fn slave_force_is_normal_push_plus_traction() {
                 xi: 0.4,
                 t1: 0.0,
                 a11: 1.0,
+                slave: [f64::NAN; 2],
+                tangent: [f64::NAN; 2],
             },
             seg_a: SegSource::Rigid(seg, [0.0, 0.0]),
             path: Path {
@@ -255,6 +263,7 @@ fn slave_force_is_normal_push_plus_traction() {
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     };
     let mut r = [0.0; 2];
     let mut k = [0.0; 4];
@@ -323,6 +332,8 @@ fn wedge(mu: f64, slave: [f64; 2]) -> PointProblem {
         xi: 0.7,
         t1: 0.6,
         a11: 0.0626,
+        slave: [f64::NAN; 2],
+        tangent: [f64::NAN; 2],
     };
     c.path = Path {
         direction: 0,
@@ -337,6 +348,7 @@ fn point_pinned_to_a_concave_vertex_has_fd_consistent_tangents() {
     let inside = [0.00002, 0.015];
     let unpinned = PointProblem {
         at_vertex: None,
+        multiplier: None,
         ..wedge(0.3, inside)
     };
     let e = unpinned.evaluate_f64();
@@ -376,6 +388,7 @@ fn pinned_and_segment_forms_agree_at_the_boundary_of_the_wedge() {
         let pinned = wedge(mu, on_normal);
         let segment = PointProblem {
             at_vertex: None,
+            multiplier: None,
             ..pinned
         };
         assert!((segment.evaluate_f64().proj.xi - 1.0).abs() < 1e-12);
@@ -427,6 +440,8 @@ fn hermite_base(law: ContactLaw, crossing: bool) -> PointProblem {
                 xi: if crossing { 0.9 } else { -0.4 },
                 t1: 0.02,
                 a11: 0.09,
+                slave: [f64::NAN; 2],
+                tangent: [f64::NAN; 2],
             },
             seg_a: if crossing { seg_a } else { seg_b },
             path: Path {
@@ -438,6 +453,7 @@ fn hermite_base(law: ContactLaw, crossing: bool) -> PointProblem {
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     }
 }
 

@@ -8,10 +8,10 @@ use super::events::{crossing_event, CrossingEvent, PointSnapshot};
 use super::geometry::SegmentGeom;
 use super::law::ContactState;
 use super::pairing::{self, Pairing};
-use super::point::{Closed, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
+use super::point::{Closed, Multiplier, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
-use crate::model::{ContactPair, Master, Model, RigidShape, Slave, Smoothing};
+use crate::model::{ContactPair, Enforcement, Master, Model, RigidShape, Slave, Smoothing};
 
 /// History of one slave point at the last converged increment.
 #[derive(Debug, Clone, Copy)]
@@ -30,6 +30,19 @@ pub struct PointHistory {
     pub crossings: u32,
     /// Closed and sticking at the last converged increment.
     pub stuck: bool,
+    /// The slave's position and the master's unit tangent at the contact point at the last
+    /// converged increment (the spatial scheme's history).
+    pub slave: [f64; 2],
+    pub tangent: [f64; 2],
+}
+
+impl PointHistory {
+    /// Keep the spatial history of a point paired at the converged increment.
+    fn store_spatial(&mut self, slave: [f64; 2], e: &PointEval<f64>) {
+        self.slave = slave;
+        let sq = e.proj.a11.sqrt();
+        self.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
+    }
 }
 
 impl Default for PointHistory {
@@ -43,6 +56,8 @@ impl Default for PointHistory {
             gap: f64::NAN,
             crossings: 0,
             stuck: false,
+            slave: [f64::NAN; 2],
+            tangent: [f64::NAN; 2],
         }
     }
 }
@@ -87,6 +102,9 @@ pub struct ContactSystem {
     /// Verification of frozen points: their states are free again, their segments are kept
     /// where the projection is still (to 1 %) on the segment.
     verifying: bool,
+    /// Augmented-Lagrangian multipliers of every point (zero, and unused, in penalty pairs;
+    /// see [`super::augmented`]).
+    pub(super) multipliers: Vec<Vec<Multiplier>>,
 }
 
 /// A point's contact decision at one iterate: its state and the segment it is tracked on.
@@ -131,15 +149,19 @@ impl Config<'_> {
         match &pair.master {
             Master::Face {
                 segments, prev, next, ..
-            } => match pair.smoothing {
-                Smoothing::None => SegNodes::Linear(segments[k]),
-                Smoothing::Hermite => SegNodes::Hermite([
+            } => {
+                let smooth = [
                     prev[k].map(|p| segments[p][0]),
                     Some(segments[k][0]),
                     Some(segments[k][1]),
                     next[k].map(|n| segments[n][1]),
-                ]),
-            },
+                ];
+                match pair.smoothing {
+                    Smoothing::None => SegNodes::Linear(segments[k]),
+                    Smoothing::Hermite => SegNodes::Smooth(Smoothing::Hermite, smooth),
+                    Smoothing::Bezier => SegNodes::Smooth(Smoothing::Bezier, smooth),
+                }
+            }
             Master::Rigid { body, .. } => {
                 let b = &self.model.rigid[*body];
                 let RigidShape::Surface { pieces } = &b.shape else {
@@ -154,12 +176,14 @@ impl Config<'_> {
     pub fn segment(&self, pair: &ContactPair, k: usize) -> SegmentGeom<f64> {
         match self.seg_nodes(pair, k) {
             SegNodes::Linear([a, b]) => SegmentGeom::linear(self.node(a), self.node(b)),
-            SegNodes::Hermite([p, a, b, n]) => SegmentGeom::hermite(
-                p.map(|p| self.node(p)),
-                self.node(a.expect("segment end")),
-                self.node(b.expect("segment end")),
-                n.map(|n| self.node(n)),
-            ),
+            SegNodes::Smooth(kind, [p, a, b, n]) => {
+                let (p, n) = (p.map(|p| self.node(p)), n.map(|n| self.node(n)));
+                let (a, b) = (self.node(a.expect("segment end")), self.node(b.expect("segment end")));
+                match kind {
+                    Smoothing::Bezier => SegmentGeom::bezier(p, a, b, n),
+                    _ => SegmentGeom::hermite(p, a, b, n),
+                }
+            }
             SegNodes::Rigid(p, o) => SegmentGeom::from_piece(&p, o),
         }
     }
@@ -168,8 +192,9 @@ impl Config<'_> {
 /// Where a master segment's geometry comes from.
 enum SegNodes {
     Linear([usize; 2]),
-    /// The neighbour before, the two ends, the neighbour after (global nodes).
-    Hermite([Option<usize>; 4]),
+    /// A smoothed segment: the neighbour before, the two ends, the neighbour after (global
+    /// nodes).
+    Smooth(Smoothing, [Option<usize>; 4]),
     Rigid(crate::model::Piece, [f64; 2]),
 }
 
@@ -196,7 +221,13 @@ impl Slots {
     fn source(&mut self, cfg: &Config, pair: &ContactPair, k: usize) -> SegSource {
         match cfg.seg_nodes(pair, k) {
             SegNodes::Linear([a, b]) => SegSource::Face([self.slot(a), self.slot(b)]),
-            SegNodes::Hermite(nodes) => SegSource::Hermite(nodes.map(|n| n.map(|n| self.slot(n)))),
+            SegNodes::Smooth(kind, nodes) => {
+                let slots = nodes.map(|n| n.map(|n| self.slot(n)));
+                match kind {
+                    Smoothing::Bezier => SegSource::Bezier(slots),
+                    _ => SegSource::Hermite(slots),
+                }
+            }
             SegNodes::Rigid(p, o) => SegSource::Rigid(p, o),
         }
     }
@@ -207,6 +238,8 @@ pub(super) fn stored(h: &PointHistory) -> StoredTraction {
         xi: h.xi,
         t1: h.t1,
         a11: h.a11,
+        slave: h.slave,
+        tangent: h.tangent,
     }
 }
 
@@ -250,6 +283,7 @@ pub(super) fn local_problem(
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     };
     (problem, slots)
 }
@@ -305,6 +339,9 @@ impl ContactSystem {
             .collect();
         let frozen = model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect();
         let stick_held = model.contacts.iter().map(|p| vec![false; p.slaves.len()]).collect();
+        let multipliers = (model.contacts.iter())
+            .map(|p| vec![Multiplier::default(); p.slaves.len()])
+            .collect();
         ContactSystem {
             committed,
             current,
@@ -313,6 +350,7 @@ impl ContactSystem {
             frozen,
             stick_held,
             verifying: false,
+            multipliers,
         }
     }
 
@@ -431,7 +469,9 @@ impl ContactSystem {
                     (None, None) => self.committed[ip][is].closed,
                     (_, e) => e.is_some_and(|e| e.state != ContactState::Open),
                 };
-                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, closed_before, grid);
+                // an augmented point is closed while `λ_N − ε_N ζ > 0`: the rules see that gap
+                let shift = self.multipliers[ip][is].normal / pair.law.eps_n;
+                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, closed_before, grid, shift);
             }
         }
         let committed = &self.committed;
@@ -484,6 +524,9 @@ impl ContactSystem {
                     problem.stick_held = self.stick_held[ip][is];
                 }
                 problem.at_vertex = paired.pinned.then_some(loc.xi.signum());
+                if matches!(pair.enforcement, Enforcement::Augmented { .. }) {
+                    problem.multiplier = Some(self.multipliers[ip][is]);
+                }
                 let nd = 2 * slots.len;
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);
@@ -508,7 +551,9 @@ impl ContactSystem {
                         if let (true, Some(a), Some(b)) = (old.closed, old.segment, now.segment) {
                             if a != b {
                                 h.crossings += 1;
-                                events.push(crossing_event(cfg, ip, is, a, b, &old, &e, now.path));
+                                let m = matches!(pair.enforcement, Enforcement::Augmented { .. })
+                                    .then_some(self.multipliers[ip][is]);
+                                events.push(crossing_event(cfg, ip, is, a, b, &old, &e, now.path, m));
                             }
                         }
                         h.closed = true;
@@ -517,6 +562,7 @@ impl ContactSystem {
                         h.xi = e.proj.xi;
                         h.t1 = e.t1;
                         h.a11 = e.proj.a11;
+                        h.store_spatial(cfg.slave_pos(pair.slaves[is]), &e);
                     }
                     Some(e) => {
                         // paired but open: where it is, for the first touch
@@ -526,6 +572,7 @@ impl ContactSystem {
                         h.xi = e.proj.xi;
                         h.a11 = e.proj.a11;
                         h.gap = e.proj.gap;
+                        h.store_spatial(cfg.slave_pos(pair.slaves[is]), &e);
                     }
                     None => {
                         h.closed = false;
@@ -533,6 +580,15 @@ impl ContactSystem {
                         h.t1 = 0.0;
                         h.gap = f64::NAN;
                     }
+                }
+                if matches!(pair.enforcement, Enforcement::Augmented { .. }) {
+                    // the next increment starts from the converged normal force, and its
+                    // tangential correction from the traction carried into it
+                    let closed = now.eval.filter(|e| e.state != ContactState::Open);
+                    self.multipliers[ip][is] = Multiplier {
+                        normal: closed.map_or(0.0, |e| e.normal_force.max(0.0)),
+                        tangential: 0.0,
+                    };
                 }
             }
         }
@@ -546,7 +602,8 @@ impl ContactSystem {
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 let now = &self.current[ip][is];
                 let hist = &self.committed[ip][is];
-                out.push(PointSnapshot::new(cfg, ip, is, slave, pair, now, hist));
+                let multiplier = self.multipliers[ip][is];
+                out.push(PointSnapshot::new(cfg, (ip, is), slave, pair, now, hist, multiplier));
             }
         }
         out

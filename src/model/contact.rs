@@ -71,8 +71,46 @@ pub struct ContactPair {
     pub search_radius: f64,
     /// Vertices of a rigid master outline owned by another pair's slave.
     pub owned_vertices: Vec<OwnedVertex>,
-    /// How a deformable master face is interpolated between its nodes.
+    /// How a deformable master face is interpolated between its nodes. For a rigid master
+    /// (whose pieces are exact curves) it is the smoothing of the face its implied vertex
+    /// pair presses on (see [`ContactPair::face_smoothing`]).
     pub smoothing: Smoothing,
+    /// Penalty, or augmented Lagrangian (Uzawa updates at converged increments).
+    pub enforcement: Enforcement,
+}
+
+impl ContactPair {
+    /// The interpolation of this pair's own master: its smoothing for a deformable face,
+    /// [`Smoothing::None`] for a rigid outline (its kinks are real vertices).
+    pub fn face_smoothing(&self) -> Smoothing {
+        match self.master {
+            Master::Face { .. } => self.smoothing,
+            Master::Rigid { .. } => Smoothing::None,
+        }
+    }
+}
+
+/// How a pair enforces its contact constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Enforcement {
+    /// Penalty regularisation: forces `ε_N ⟨−ζ⟩` and the penalised stick, errors of order
+    /// force / ε.
+    #[default]
+    Penalty,
+    /// Augmented Lagrangian by Uzawa updates at converged increments (Wriggers 2006, §6.4;
+    /// Laursen & Simo 1993 for friction): the increment is solved again with the updated
+    /// multipliers until their largest change, relative to the pair's largest normal force,
+    /// is at most `tol`, at most `max` times (`contact::augmented`).
+    Augmented { tol: f64, max: usize },
+}
+
+impl Enforcement {
+    pub fn name(self) -> &'static str {
+        match self {
+            Enforcement::Penalty => "penalty",
+            Enforcement::Augmented { .. } => "augmented",
+        }
+    }
 }
 
 /// Interpolation of a deformable master face (rigid masters are exact curves).
@@ -85,6 +123,20 @@ pub enum Smoothing {
     /// C1 cubic Hermite segments through the nodes, tangents from the neighbours
     /// (`contact::surface::hermite`; Wriggers, Krstulovic-Opara & Korelc 2001).
     Hermite,
+    /// C1 quadratic Bézier arcs between the midpoints of neighbouring segments with the node
+    /// as middle control point (`contact::surface::bezier`; the uniform quadratic B-spline of
+    /// the nodes): it cuts the face's corners instead of passing through the nodes.
+    Bezier,
+}
+
+impl Smoothing {
+    pub fn name(self) -> &'static str {
+        match self {
+            Smoothing::None => "none",
+            Smoothing::Hermite => "hermite",
+            Smoothing::Bezier => "bezier",
+        }
+    }
 }
 
 /// Penalty and friction parameters of a contact pair.
@@ -108,6 +160,9 @@ pub enum TransferKind {
     Continuous,
     /// Wriggers, Krstulovic-Opara & Korelc, IJNME 51 (2001): slip as arc length.
     PathLength,
+    /// Puso & Laursen, IJNME 54 (2002): the convective increment from the stored spatial
+    /// position of the slave point projected on the current segment (no segment history).
+    Spatial,
 }
 
 impl TransferKind {
@@ -116,6 +171,7 @@ impl TransferKind {
             TransferKind::Straightforward => "straightforward",
             TransferKind::Continuous => "continuous",
             TransferKind::PathLength => "path-length",
+            TransferKind::Spatial => "spatial",
         }
     }
 }

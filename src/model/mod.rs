@@ -9,7 +9,7 @@ pub mod rigid;
 
 use crate::element::material::Material;
 use crate::element::quad::ElementKind;
-pub use contact::{ContactLaw, ContactPair, Master, OwnedVertex, Slave, Smoothing, TransferKind};
+pub use contact::{ContactLaw, ContactPair, Enforcement, Master, OwnedVertex, Slave, Smoothing, TransferKind};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
 use std::collections::BTreeMap;

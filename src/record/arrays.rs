@@ -73,6 +73,11 @@ pub struct ContactArrays {
     #[schemars(with = "Vec<Real2>")]
     #[serde(with = "Real2s")]
     pub tangent: Vec<[f64; 2]>,
+    /// Augmented-Lagrangian multiplier estimates `[λ_N, λ_T]` of each point (written only
+    /// for pairs with `enforcement = "augmented"`; absent or empty: NaN, penalty pairs).
+    #[serde(default, skip_serializing_if = "Vec::is_empty", with = "Real2s")]
+    #[schemars(with = "Vec<Real2>")]
+    pub multiplier: Vec<[f64; 2]>,
 }
 
 impl ContactArrays {
@@ -96,7 +101,8 @@ impl ContactArrays {
             self.normal.len(),
             self.tangent.len(),
         ];
-        if lengths.iter().any(|&l| l != n) {
+        let multipliers_ok = self.multiplier.is_empty() || self.multiplier.len() == n;
+        if lengths.iter().any(|&l| l != n) || !multipliers_ok {
             return Err(format!(
                 "the arrays of pair {} at increment {} have different lengths ({n} slaves, then {lengths:?})",
                 self.pair, self.increment
@@ -141,6 +147,7 @@ impl ContactArrays {
                     contact_point: self.contact_point[k],
                     normal: self.normal[k],
                     tangent: self.tangent[k],
+                    multiplier: self.multiplier.get(k).copied().unwrap_or([f64::NAN; 2]),
                 })
             })
             .collect()
@@ -193,7 +200,8 @@ pub struct ContactColumns<'a> {
 impl Serialize for ContactColumns<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let (p, k) = (self.points, Some(self.take));
-        let mut m = s.serialize_struct("ContactArrays", 19)?;
+        let augmented = self.take.iter().any(|&i| p[i].multiplier.iter().any(|x| x.is_finite()));
+        let mut m = s.serialize_struct("ContactArrays", 19 + usize::from(augmented))?;
         m.serialize_field("increment", &self.increment)?;
         m.serialize_field("t", &Item(self.t))?;
         m.serialize_field("pair", &self.pair)?;
@@ -213,6 +221,9 @@ impl Serialize for ContactColumns<'_> {
         m.serialize_field("contact_point", &column(p, k, |r| Item2(r.contact_point)))?;
         m.serialize_field("normal", &column(p, k, |r| Item2(r.normal)))?;
         m.serialize_field("tangent", &column(p, k, |r| Item2(r.tangent)))?;
+        if augmented {
+            m.serialize_field("multiplier", &column(p, k, |r| Item2(r.multiplier)))?;
+        }
         m.end()
     }
 }
@@ -342,6 +353,7 @@ mod tests {
             contact_point: [f64::NAN, 0.5],
             normal: [0.0, 1.0],
             tangent: [-1.0, 0.0],
+            multiplier: [f64::NAN; 2],
         }
     }
 
@@ -392,6 +404,33 @@ mod tests {
             let a = &points[k];
             assert_eq!(serde_json::to_string(a).unwrap(), serde_json::to_string(b).unwrap());
         }
+    }
+
+    #[test]
+    fn multipliers_are_a_column_only_where_a_point_has_one() {
+        let mut points: Vec<_> = (0..3).map(|k| point(k, 0.2 * k as f64)).collect();
+        let columns = |points: &[ContactPointRecord]| {
+            serde_json::to_string(&ContactColumns {
+                increment: 1,
+                t: 0.5,
+                pair: 0,
+                pair_name: "base",
+                points,
+                take: &[0, 1, 2],
+            })
+            .unwrap()
+        };
+        assert!(!columns(&points).contains("multiplier"));
+        points[1].multiplier = [3.5, -0.25];
+        let text = columns(&points);
+        let arrays: ContactArrays = serde_json::from_str(&text).unwrap();
+        assert_eq!(arrays.multiplier.len(), 3);
+        let back = arrays.records(&model()).unwrap();
+        assert_eq!(back[1].multiplier, [3.5, -0.25]);
+        assert!(back[0].multiplier[0].is_nan());
+        let mut ragged = arrays.clone();
+        ragged.multiplier.pop();
+        assert!(ragged.records(&model()).is_err());
     }
 
     #[test]

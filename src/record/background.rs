@@ -67,6 +67,7 @@ struct Point {
     contact_point: [f64; 2],
     normal: [f64; 2],
     tangent: [f64; 2],
+    multiplier: [f64; 2],
 }
 
 impl Point {
@@ -88,6 +89,7 @@ impl Point {
             contact_point: p.contact_point,
             normal: p.normal,
             tangent: p.tangent,
+            multiplier: p.multiplier,
         }
     }
 
@@ -113,6 +115,7 @@ impl Point {
             contact_point: self.contact_point,
             normal: self.normal,
             tangent: self.tangent,
+            multiplier: self.multiplier,
         })
     }
 }

@@ -190,6 +190,15 @@ pub struct ContactPointRecord {
     pub normal: [f64; 2],
     #[serde(with = "Real2")]
     pub tangent: [f64; 2],
+    /// Augmented-Lagrangian multiplier estimates the increment's last solve used: the normal
+    /// force `λ_N` and the tangential traction `λ_T` along the unit tangent (NaN in penalty
+    /// pairs; `λ_T` NaN for a point without friction history). Absent in older recordings.
+    #[serde(with = "Real2", default = "nan2")]
+    pub multiplier: [f64; 2],
+}
+
+fn nan2() -> [f64; 2] {
+    [f64::NAN; 2]
 }
 
 /// The names of a model's contact pairs and slaves, made once per run and shared by the
@@ -249,6 +258,7 @@ impl ContactPointRecord {
             contact_point: s.contact_point,
             normal: s.normal,
             tangent: s.tangent,
+            multiplier: s.multiplier,
         }
     }
 }

@@ -170,6 +170,7 @@ mod tests {
             contact_point: [1.0, 2.0],
             normal: [0.0, 1.0],
             tangent: [1.0, 0.0],
+            multiplier: [f64::NAN; 2],
         }
     }
 

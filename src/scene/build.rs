@@ -8,8 +8,8 @@ use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
-    chain_neighbours, Body, ContactPair, Element, Master, Model, Monitor, MonitorTarget, NodalLoad, Piece, Prescribed,
-    Ramp, RigidBody, RigidShape, Slave,
+    chain_neighbours, Body, ContactPair, Element, Enforcement, Master, Model, Monitor, MonitorTarget, NodalLoad, Piece,
+    Prescribed, Ramp, RigidBody, RigidShape, Slave, Smoothing,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -157,7 +157,29 @@ fn line_pieces(pts: &[[f64; 2]]) -> impl Iterator<Item = Piece> + '_ {
     pts.windows(2).map(|w| Piece::Segment { a: w[0], b: w[1] })
 }
 
+/// The shape of a rigid body, its straight joints rounded when it has a `fillet`.
 fn rigid_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
+    let shape = sharp_shape(cx, r)?;
+    match (r.fillet, shape) {
+        (None, shape) => Ok(shape),
+        (Some(radius), RigidShape::Surface { pieces }) => super::fillet::fillet(&pieces, radius)
+            .map(|pieces| RigidShape::Surface { pieces })
+            .map_err(|e| {
+                cx.err(
+                    &r.name,
+                    format!("rigid body `{}`: {e}", r.name),
+                    "the radius must fit on the straight pieces next to every vertex",
+                )
+            }),
+        (Some(_), RigidShape::Point { .. }) => Err(cx.err(
+            &r.name,
+            format!("rigid body `{}` is a point: it has no vertex to round", r.name),
+            "remove `fillet`, or make it a polyline, polygon or outline",
+        )),
+    }
+}
+
+fn sharp_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
     let hint = "give exactly one of `point`, `polyline`, `arc`, `outline` or `polygon`";
     if let (Some(poly), None, None, None, None) = (&r.polygon, &r.point, &r.polyline, &r.arc, &r.outline) {
         return Ok(RigidShape::Surface {
@@ -355,6 +377,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
     let h = max_edge(&m);
     let mut implied = Vec::new();
     for c in &s.contacts {
+        refuse_rounded_vertex(&cx, s, c)?;
         let mut pair = contact_pair(&cx, &m, c, h)?;
         implied.extend(build_pairs::implied_pairs(&cx, &m, c, &mut pair)?);
         m.contacts.push(pair);
@@ -407,6 +430,21 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         });
     }
     Ok(m)
+}
+
+/// A vertex of a filleted outline is an arc now: it cannot be a slave point.
+fn refuse_rounded_vertex(cx: &Ctx, s: &SceneFile, c: &ContactSpec) -> Result<(), SceneError> {
+    let (Some(r), Some(v)) = (&c.slave.rigid, c.slave.vertex) else {
+        return Ok(());
+    };
+    match s.rigid.iter().find(|x| x.name == *r).and_then(|x| x.fillet) {
+        Some(radius) => Err(cx.err(
+            &c.name,
+            format!("contact `{}`: vertex {v} of `{r}` is rounded by its fillet (r = {radius}): it is no point", c.name),
+            "remove the pair (the outline's arc meets the slave nodes itself), or remove the fillet",
+        )),
+        None => Ok(()),
+    }
 }
 
 fn max_edge(m: &Model) -> f64 {
@@ -499,6 +537,10 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
     if c.eps_n <= 0.0 || c.eps_t < 0.0 || c.mu < 0.0 || (c.mu > 0.0 && c.eps_t <= 0.0) {
         return Err(bad("need eps_n > 0, mu ≥ 0, and eps_t > 0 when mu > 0"));
     }
+    let smoothing = c.master_smoothing.unwrap_or(match master {
+        Master::Face { .. } => Smoothing::None,
+        Master::Rigid { .. } => Smoothing::Hermite,
+    });
     Ok(ContactPair {
         name: c.name.clone(),
         slaves,
@@ -511,6 +553,26 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         transfer: c.transfer,
         search_radius: c.search_radius.unwrap_or(2.0 * h),
         owned_vertices: Vec::new(),
-        smoothing: c.master_smoothing,
+        smoothing,
+        enforcement: enforcement(cx, c)?,
     })
+}
+
+/// The pair's enforcement from its scene keys.
+fn enforcement(cx: &Ctx, c: &ContactSpec) -> Result<Enforcement, SceneError> {
+    match c.enforcement {
+        EnforcementKind::Penalty => Ok(Enforcement::Penalty),
+        EnforcementKind::Augmented if c.augmented_tol > 0.0 && c.augmented_max > 0 => Ok(Enforcement::Augmented {
+            tol: c.augmented_tol,
+            max: c.augmented_max,
+        }),
+        EnforcementKind::Augmented => Err(cx.err(
+            &c.name,
+            format!(
+                "contact `{}`: augmented_tol = {} and augmented_max = {} (both must be positive)",
+                c.name, c.augmented_tol, c.augmented_max
+            ),
+            "e.g. augmented_tol = 1e-3, augmented_max = 30",
+        )),
+    }
 }

@@ -5,7 +5,7 @@ use super::build::{body_index, Ctx};
 use super::types::ContactSpec;
 use super::SceneError;
 use crate::model::{
-    chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave, Smoothing,
+    chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave,
 };
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
@@ -76,6 +76,7 @@ pub fn second_pass(m: &Model, pair: &mut ContactPair, slave_body: usize) -> Opti
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
         smoothing: pair.smoothing,
+        enforcement: pair.enforcement,
     })
 }
 
@@ -130,7 +131,9 @@ pub fn vertex_pair(m: &Model, pair: &ContactPair, slave_body: usize, taken: &[(u
         transfer: pair.transfer,
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
-        smoothing: Smoothing::Hermite,
+        // a rigid master's pair keeps the smoothing of the face its vertices press on
+        smoothing: pair.smoothing,
+        enforcement: pair.enforcement,
     })
 }
 

@@ -51,7 +51,7 @@ pub fn initial_overlaps(m: &Model, allowed: &[bool]) -> Vec<InitialOverlap> {
         let mut grid = None;
         let mut overlap: Option<InitialOverlap> = None;
         for &slave in &pair.slaves {
-            let located = pairing::locate(&cfg, pair, slave, None, false, &mut grid).located;
+            let located = pairing::locate(&cfg, pair, slave, None, false, &mut grid, 0.0).located;
             let Some(l) = located.filter(|l| l.gap < -tol) else {
                 continue;
             };

@@ -4,6 +4,7 @@
 //! overrides are applied to the parsed TOML before it is checked.
 
 mod build;
+pub mod fillet;
 pub mod build_pairs;
 pub mod builtin;
 pub mod initial_contact;

@@ -232,6 +232,11 @@ pub struct RigidSpec {
     /// A regular polygon (a faceted drum): the outline through the vertices of a regular
     /// polygon inscribed in a circle, counter-clockwise (the rigid body inside).
     pub polygon: Option<PolygonSpec>,
+    /// Round every vertex where two straight pieces meet (of a `polyline`, `polygon` or
+    /// `outline`) by a tangent arc of this radius: C1 smoothing of a rigid outline. Its
+    /// vertices are then no longer vertices (no implied vertex pair, and none can be named
+    /// as a slave). Each arc takes `radius · tan(θ/2)` off both pieces at a turn of `θ`.
+    pub fillet: Option<f64>,
     /// Prescribed translation histories.
     #[serde(default, rename = "move")]
     pub motion: MotionSpec,
@@ -392,10 +397,47 @@ pub struct ContactSpec {
     /// refused: that is almost always an outline listed the wrong way round.
     #[serde(default)]
     pub allow_initial_penetration: bool,
-    /// Interpolation of a deformable master face: `"none"` (straight segments) or `"hermite"`
-    /// (C1 cubic segments through the nodes: the normal no longer jumps at nodes).
+    /// Interpolation of a deformable master face: `"none"` (straight segments, the default),
+    /// `"hermite"` (C1 cubic segments through the nodes, tangents from the neighbours) or
+    /// `"bezier"` (C1 quadratic Bézier arcs between the segments' midpoints, the nodes as
+    /// control points: it cuts the face's corners). The normal no longer jumps at nodes. For a
+    /// rigid master it is the smoothing of the slave nodes' face that the outline's convex
+    /// vertices press on (the implied pair `NAME/vertices`; default `"hermite"`).
     #[serde(default)]
-    pub master_smoothing: crate::model::Smoothing,
+    pub master_smoothing: Option<crate::model::Smoothing>,
+    /// How the constraints are enforced: `"penalty"` (the default; forces `ε_N ⟨−ζ⟩` and the
+    /// penalised stick, errors of order force/ε) or `"augmented"` (augmented Lagrangian:
+    /// Uzawa updates of the multipliers at converged increments, each increment solved again
+    /// until the multipliers settle; the result no longer depends on ε within `augmented_tol`).
+    #[serde(default)]
+    pub enforcement: EnforcementKind,
+    /// Augmented Lagrangian: the largest change of the pair's multipliers (normal and
+    /// tangential), relative to its largest normal force, at which the updates stop.
+    #[serde(default = "default_augmented_tol")]
+    pub augmented_tol: f64,
+    /// Augmented Lagrangian: most multiplier updates per increment; an increment still not
+    /// converged then fails (and is cut back).
+    #[serde(default = "default_augmented_max")]
+    pub augmented_max: usize,
+}
+
+/// Enforcement of a contact pair's constraints.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum EnforcementKind {
+    /// Penalty regularisation.
+    #[default]
+    Penalty,
+    /// Augmented Lagrangian (Uzawa updates at converged increments).
+    Augmented,
+}
+
+fn default_augmented_tol() -> f64 {
+    1e-3
+}
+
+fn default_augmented_max() -> usize {
+    30
 }
 
 fn yes() -> bool {

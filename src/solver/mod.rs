@@ -1,6 +1,7 @@
 //! Newton–Raphson with load stepping, automatic cut-backs and step growth.
 
 pub mod active_set;
+pub mod augmented;
 pub mod element_check;
 pub mod monitor;
 pub mod newton;

@@ -22,6 +22,18 @@ pub enum NewtonFailure {
     Diverged { residual: f64 },
     #[error("non-finite residual")]
     NonFinite,
+    #[error(
+        "augmented Lagrangian of pair `{pair}` not converged after {updates} multiplier updates: the \
+         multipliers still change by {relative:.2e} of the pair's largest normal force (augmented_tol = {tol:.1e}); \
+         raise augmented_max, loosen augmented_tol, or raise eps_n / eps_t (each update contracts the error \
+         by about k/(k + eps) for a local stiffness k)"
+    )]
+    Augmentation {
+        pair: String,
+        updates: usize,
+        relative: f64,
+        tol: f64,
+    },
     #[error(transparent)]
     Element(#[from] AssemblyError),
     #[error(transparent)]
@@ -32,7 +44,7 @@ impl NewtonFailure {
     /// The failure kind recorded in the outcome.
     pub fn kind(&self) -> FailureKind {
         match self {
-            NewtonFailure::MaxIterations { .. } => FailureKind::NoConvergence,
+            NewtonFailure::MaxIterations { .. } | NewtonFailure::Augmentation { .. } => FailureKind::NoConvergence,
             NewtonFailure::ActiveSetCycle { .. } | NewtonFailure::FrozenNotVerified { .. } => {
                 FailureKind::ActiveSetCycle
             }
@@ -52,6 +64,8 @@ pub struct Converged {
     pub reference: f64,
     /// Points frozen during the increment and verified at its end.
     pub frozen: usize,
+    /// Multiplier updates of augmented-Lagrangian pairs (each one more solve).
+    pub augmentations: usize,
 }
 
 /// Norm of the reactions (internal forces at prescribed DOFs) and of the applied loads.
@@ -158,6 +172,7 @@ pub fn solve_increment(
                     residuals: ws.residuals.clone(),
                     reference: fref,
                     frozen: ws.frozen.iter().filter(|f| **f).count(),
+                    augmentations: 0,
                 });
             }
             // release the frozen states (keeping admissible segments) and check them; points
@@ -176,6 +191,7 @@ pub fn solve_increment(
                     residuals: ws.residuals.clone(),
                     reference: fref,
                     frozen: chattering,
+                    augmentations: 0,
                 });
             }
             if verified_once {

@@ -1,7 +1,8 @@
 //! Load stepping over the pseudo-time: increments, cut-backs on failure, growth back toward
 //! the nominal step, and the reports to the observer.
 
-use super::newton::{solve_increment, Workspace};
+use super::augmented::solve_augmented;
+use super::newton::Workspace;
 use super::state::TrialState;
 use crate::assembly::{Assembler, Timings};
 use crate::contact::system::Config;
@@ -83,6 +84,9 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     pub cutbacks: usize,
     pub crossings: usize,
+    /// Multiplier updates of augmented-Lagrangian pairs over the run (each one more solve of
+    /// its increment).
+    pub augmentations: usize,
     pub wall_time_s: f64,
     pub t: f64,
     /// The first monitor at the last converged increment.
@@ -298,7 +302,7 @@ fn drive(
             }
             let mut obs_err = None;
             let mut interrupted = false;
-            let res = solve_increment(
+            let res = solve_augmented(
                 model,
                 &settings.newton,
                 &mut asm,
@@ -390,6 +394,7 @@ fn drive(
         t = t_new;
         fref = fref.max(conv.reference);
         summary.newton_iterations += conv.iterations;
+        summary.augmentations += conv.augmentations;
         let cfg = Config {
             model,
             u: &committed.u,

@@ -37,6 +37,9 @@ pub struct Metrics {
     pub jump_rel_max: Option<f64>,
     /// Largest |F − local cubic fit| at a crossing.
     pub roughness: Option<f64>,
+    /// Largest |F − cubic fit| over the plan's `spike_window`, over the peak |F|.
+    #[serde(default)]
+    pub spike_rel: Option<f64>,
     /// Largest relative error against the analytic reference, and what it is made of.
     pub analytic_err: Option<f64>,
     pub analytic_detail: String,
@@ -168,6 +171,7 @@ pub fn to_csv(rows: &[IndexRow]) -> String {
             "jump_max",
             "jump_rel_max",
             "roughness",
+            "spike_rel",
             "analytic_err",
             "analytic_detail",
             "reference",
@@ -209,6 +213,7 @@ pub fn to_csv(rows: &[IndexRow]) -> String {
             opt(&m.jump_max),
             opt(&m.jump_rel_max),
             opt(&m.roughness),
+            opt(&m.spike_rel),
             opt(&m.analytic_err),
             m.analytic_detail.clone(),
             r.reference.clone(),

@@ -64,6 +64,10 @@ pub struct StudyPlan {
     /// Points on either side of a crossing in the roughness fit.
     #[serde(default = "default_window")]
     pub roughness_window: usize,
+    /// `[x0, x1]`: measure the crossing spikes as the largest |F − cubic fit| over the curve
+    /// points with `x ∈ [x0, x1]`, over the curve's peak |F| (the metric `spike_rel`).
+    #[serde(default)]
+    pub spike_window: Option<[f64; 2]>,
 }
 
 fn default_window() -> usize {
@@ -77,11 +81,14 @@ pub enum Reference {
     /// No curve reference (crossing jumps and roughness are still measured).
     #[default]
     None,
-    /// The completed run of this study matching `where` with the most DOFs, then the most
-    /// increments.
+    /// The completed run of this study (or of the study named `study`, so that the
+    /// reference is none of the runs charted) matching `where` with the most DOFs, then the
+    /// most increments.
     Finest {
         #[serde(default, rename = "where")]
         filter: BTreeMap<String, toml::Value>,
+        #[serde(default)]
+        study: Option<String>,
     },
     /// An external curve: a CSV file with a header (columns `x` and `y`, or the named ones).
     Csv {
@@ -171,7 +178,8 @@ impl Plan {
                 column,
                 message: e.message().to_string(),
                 hint: "see sweeps/smoke.toml for the plan format; keys are name, description and [[study]] tables \
-                       (name, scene, set, family, grid, list, reference, checks, plateau_from, roughness_window)"
+                       (name, scene, set, family, grid, list, reference, checks, plateau_from, roughness_window, \
+                       spike_window)"
                     .into(),
             }
         })?;

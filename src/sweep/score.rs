@@ -74,6 +74,10 @@ fn finest<'a>(recs: &[&'a RunRecord], filter: &BTreeMap<String, toml::Value>) ->
         })
 }
 
+fn study_runs<'a>(records: &'a [RunRecord], study: &str) -> Vec<&'a RunRecord> {
+    records.iter().filter(|r| r.study == study).collect()
+}
+
 fn analytic_metrics(s: &StudyPlan, rec: &RunRecord, m: &mut Metrics) {
     match &s.reference {
         Reference::Hertz { young, poisson, radius } => {
@@ -140,6 +144,7 @@ fn measure(s: &StudyPlan, rec: &RunRecord, reference: Option<&Curve>) -> Metrics
         jump_max: finite(metrics::max_jump(&jumps)),
         jump_rel_max: finite(metrics::max_relative_jump(&jumps)),
         roughness: finite(metrics::roughness(&c, &at, s.roughness_window)),
+        spike_rel: finite(s.spike_window.and_then(|w| metrics::spike(&c, w))),
         ..Metrics::default()
     };
     if let Some(r) = reference {
@@ -256,7 +261,7 @@ pub fn score(
         let recs: Vec<&RunRecord> = records.iter().filter(|r| r.study == s.name).collect();
         let (reference, label): (Option<Curve>, String) = match &s.reference {
             Reference::None => (None, String::new()),
-            Reference::Finest { filter } => match finest(&recs, filter) {
+            Reference::Finest { filter, study } => match finest(&study_runs(records, study.as_ref().unwrap_or(&s.name)), filter) {
                 Some(r) => (Some(curve(r)), r.id.clone()),
                 None => (None, String::new()),
             },

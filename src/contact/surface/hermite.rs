@@ -19,13 +19,12 @@
 //! that of one facet. `ρ_1 = ∂ρ/∂ξ = ½ ∂ρ/∂s`.
 //!
 //! The closest point solves `(r_s − ρ(ξ))·ρ_1(ξ) = 0` by Newton's method, first on the real
-//! parts (from the chord's projection), then two more steps in the scalar type `S`: from a
-//! converged real root, Newton steps in dual numbers give the exact first and second
-//! derivatives of `ξ` with respect to every node (the implicit-function derivatives), so the
-//! contact kernel's tangent stays consistent.
+//! parts (from the chord's projection), then two more steps in the scalar type `S`
+//! ([`super::smooth_closest_xi`]): from a converged real root, Newton steps in dual numbers
+//! give the exact first and second derivatives of `ξ` with respect to every node (the
+//! implicit-function derivatives), so the contact kernel's tangent stays consistent.
 
-use super::face::line_closest;
-use super::MasterSegment;
+use super::{smooth_arc_length, smooth_closest_xi, MasterSegment};
 use crate::contact::scalar::{add, dot, re, scale, sub, Scalar, V2};
 
 /// Cubic Hermite face segment `x1 → x2` with the neighbouring nodes `x0`, `x3` (`None` at a
@@ -92,9 +91,6 @@ impl<S: Scalar> HermiteSegment<S> {
     }
 }
 
-/// Newton iterations on the real parts before the two steps in `S`.
-const REAL_ITERATIONS: usize = 30;
-
 impl<S: Scalar> MasterSegment<S> for HermiteSegment<S> {
     fn eval(&self, xi: S) -> (V2<S>, V2<S>) {
         let (rho, rho1, _) = self.eval2(xi);
@@ -108,54 +104,15 @@ impl<S: Scalar> MasterSegment<S> for HermiteSegment<S> {
             x2: re(self.x2),
             x3: self.x3.map(re::<S>),
         };
-        let rsr = re(rs);
-        let f = |seg: &HermiteSegment<f64>, xi: f64| {
-            let (rho, r1, r11) = seg.eval2(xi);
-            let d = sub(rsr, rho);
-            (dot(d, r1), dot(d, r11) - dot(r1, r1))
-        };
-        let mut xi = line_closest(real.x1, real.x2, rsr).clamp(-3.0, 3.0);
-        for _ in 0..REAL_ITERATIONS {
-            let (g, dg) = f(&real, xi);
-            if dg.abs() < f64::MIN_POSITIVE {
-                break;
-            }
-            let step = g / dg;
-            xi = (xi - step).clamp(-3.0, 3.0);
-            if step.abs() < 1e-15 {
-                break;
-            }
-        }
-        // derivatives: Newton in S from the real root
-        let mut x = S::from(xi);
-        for _ in 0..2 {
-            let (rho, r1, r11) = self.eval2(x);
-            let d = sub(rs, rho);
-            x -= dot(d, r1) / (dot(d, r11) - dot(r1, r1));
-        }
-        x
+        smooth_closest_xi(&|xi| real.eval2(xi), &|xi| self.eval2(xi), (real.x1, real.x2), rs)
     }
 
     fn length(&self) -> S {
-        // Gauss–Legendre, 5 points, of |ρ_1| over ξ ∈ [−1, 1]
-        const X: [f64; 5] = [
-            0.0,
-            -0.538_469_310_105_683,
-            0.538_469_310_105_683,
-            -0.906_179_845_938_664,
-            0.906_179_845_938_664,
-        ];
-        const W: [f64; 5] = [
-            0.568_888_888_888_889,
-            0.478_628_670_499_366,
-            0.478_628_670_499_366,
-            0.236_926_885_056_189,
-            0.236_926_885_056_189,
-        ];
-        X.iter().zip(W).fold(S::from(0.0), |acc, (&x, w)| {
-            let (_, r1) = self.eval(S::from(x));
-            acc + norm(r1) * w
-        })
+        self.arc_length(S::from(-1.0), S::from(1.0))
+    }
+
+    fn arc_length(&self, from: S, to: S) -> S {
+        smooth_arc_length(&|xi| self.eval(xi).1, from, to)
     }
 }
 

@@ -8,10 +8,12 @@
 
 mod continuous;
 mod path_length;
+mod spatial;
 mod straightforward;
 
 pub use continuous::Continuous;
 pub use path_length::PathLength;
+pub use spatial::Spatial;
 pub use straightforward::Straightforward;
 
 use super::geometry::Projection;
@@ -26,6 +28,7 @@ impl TransferKind {
             TransferKind::Straightforward => Straightforward.trial(ctx),
             TransferKind::Continuous => Continuous.trial(ctx),
             TransferKind::PathLength => PathLength.trial(ctx),
+            TransferKind::Spatial => Spatial.trial(ctx),
         }
     }
 }
@@ -39,6 +42,10 @@ pub struct StoredTraction {
     pub t1: f64,
     /// `a11` of `A` at `ξ_A` when it was stored (so `T^1_A = T_1 / a11`).
     pub a11: f64,
+    /// Spatial history (the spatial scheme): the slave's position and the unit tangent of
+    /// the master at the contact point when it was stored.
+    pub slave: [f64; 2],
+    pub tangent: [f64; 2],
 }
 
 /// Where the old contact point is now: segment `A` evaluated at `ξ_A` in the current
@@ -65,6 +72,9 @@ pub struct TransferInput<S: Scalar> {
     pub arc_length: S,
     /// Whether `A ≠ B`.
     pub crossing: bool,
+    /// `ξ` of the closest point of the stored slave position on the current `B` (the
+    /// spatial scheme; zero for the others, which do not compute it).
+    pub stored_slave_xi: S,
 }
 
 /// A history-transfer scheme.

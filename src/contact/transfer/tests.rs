@@ -36,6 +36,9 @@ fn problem(scheme: TransferKind, slave_x: f64, same_segment: bool) -> PointProbl
                 xi: 0.8,
                 t1: TAU * a11_a.sqrt(),
                 a11: a11_a,
+                // the old slave position (x = −0.1, on A) for the spatial scheme
+                slave: [-0.1, 1e-3],
+                tangent: [1.0, 0.0],
             },
             seg_a: SegSource::Face([0, 1]),
             path: Path {
@@ -47,6 +50,7 @@ fn problem(scheme: TransferKind, slave_x: f64, same_segment: bool) -> PointProbl
         forced: None,
         stick_held: false,
         at_vertex: None,
+        multiplier: None,
     }
 }
 
@@ -56,8 +60,8 @@ fn physical_trial(p: &PointProblem) -> f64 {
 }
 
 #[test]
-fn continuous_and_path_length_give_the_exact_trial_across_the_boundary() {
-    for s in [TransferKind::Continuous, TransferKind::PathLength] {
+fn continuous_path_length_and_spatial_give_the_exact_trial_across_the_boundary() {
+    for s in [TransferKind::Continuous, TransferKind::PathLength, TransferKind::Spatial] {
         let t = physical_trial(&problem(s, 0.2, false));
         assert!((t - (TAU - 0.3 * EPS_T)).abs() < 1e-9 * EPS_T, "{s:?}: {t}");
     }
@@ -80,6 +84,7 @@ fn every_scheme_reduces_to_seed_eq_1_on_one_segment() {
         TransferKind::Straightforward,
         TransferKind::Continuous,
         TransferKind::PathLength,
+        TransferKind::Spatial,
     ] {
         let t = physical_trial(&problem(s, -0.3, true));
         assert!((t - (TAU + 0.2 * EPS_T)).abs() < 1e-9 * EPS_T, "{s:?}: {t}");
@@ -98,4 +103,25 @@ fn continuous_anchor_follows_seed_eq_4() {
     let xa = -0.5 + 0.5 * anchor_a; // position on A
     let xb = 1.0 + anchor_b; // position on B
     assert!((xa - xb).abs() < 1e-12, "{xa} vs {xb}");
+}
+
+/// The spatial scheme measures the slave's motion over the *current* master: a slave that
+/// stays put while the master slides under it sees no slip, where every segment-based
+/// scheme sees the master's motion (here 0.3 to the left: the slave slid +0.3 over it).
+#[test]
+fn spatial_does_not_see_a_master_sliding_under_a_fixed_slave() {
+    let moved = |scheme| {
+        let mut p = problem(scheme, -0.1, true);
+        for x in &mut p.x[..3] {
+            x[0] -= 0.3;
+        }
+        // the slave stays at x = −0.1, now at ξ = 0.2 + 0.6 − 1 … of the moved A
+        physical_trial(&p)
+    };
+    for s in [TransferKind::Straightforward, TransferKind::Continuous, TransferKind::PathLength] {
+        let t = moved(s);
+        assert!((t - (TAU - 0.3 * EPS_T)).abs() < 1e-9 * EPS_T, "{s:?}: {t}");
+    }
+    let t = moved(TransferKind::Spatial);
+    assert!((t - TAU).abs() < 1e-9 * EPS_T, "spatial: {t}");
 }

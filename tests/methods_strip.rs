@@ -1,0 +1,181 @@
+//! The methods the seed compares against on its benchmark (strip-channel, μ = 0.2,
+//! continuous transfer, the scene's adaptive stepping to full insertion, v = 12).
+//!
+//! ```text
+//!   x = 0 (u_x = 0; u_y = −v)                  C (6.5, 0): rigid corner, slave on the face
+//!   |==================================== strip, bottom face = master of C (smoothed or not)
+//!   |                                  ●━━━━━━━━━━━ block
+//! ```
+//! 1. **C1 smoothing of the strip's face** (`master_smoothing`): the force of a faceted face
+//!    spikes each time C crosses a node (the normal jumps by the kink, which grows under
+//!    refinement as the face wraps C more sharply). Measure: the largest |F − cubic fit|
+//!    over v ∈ [4, 5.5], over the peak force (`analysis::metrics::spike`). Reference: none
+//!    (a smooth curve has none); the faceted face of the same mesh for comparison.
+//! 2. **Augmented Lagrangian**: the peak force must not depend on ε_N = ε_T over two decades
+//!    (2.1e3 … 2.1e5, the seed's value at the top) to 0.1 %; the penalty alone moves it by
+//!    its compliance (measured 0.05 % on 24×1).
+//!
+//! The CI tier runs 24×1 and 48×2; the table over 24×1 … 240×8 in docs/methods.md comes from
+//! `cargo test --release --test methods_strip -- --ignored --nocapture` (minutes).
+
+mod common;
+
+use contrail::analysis::metrics::spike;
+use std::time::Instant;
+
+#[derive(Debug, Clone)]
+struct Row {
+    mesh: [usize; 2],
+    sets: Vec<String>,
+    complete: bool,
+    peak: f64,
+    spike: f64,
+    augmentations: usize,
+    iterations: usize,
+    wall: f64,
+}
+
+fn run(mesh: [usize; 2], sets: &[&str]) -> Row {
+    let mut all = vec![format!("body.strip.mesh.elements=[{},{}]", mesh[0], mesh[1])];
+    all.extend(sets.iter().map(|s| s.to_string()));
+    let refs: Vec<&str> = all.iter().map(String::as_str).collect();
+    let p = common::scene("strip-channel", &refs);
+    let t0 = Instant::now();
+    let (r, mem) = common::solve(&p);
+    let wall = t0.elapsed().as_secs_f64();
+    let curve: Vec<(f64, f64)> = (mem.increments.iter())
+        .filter_map(|i| i.monitor.as_ref().map(|m| (m.displacement, m.force)))
+        .collect();
+    let peak = curve.iter().map(|p| p.1).fold(f64::MIN, f64::max);
+    let row = Row {
+        mesh,
+        sets: sets.iter().map(|s| s.to_string()).collect(),
+        complete: r.is_ok(),
+        peak,
+        spike: spike(&curve, [4.0, 5.5]).unwrap_or(f64::NAN),
+        augmentations: r.as_ref().map_or(0, |s| s.augmentations),
+        iterations: r.as_ref().map_or(0, |s| s.newton_iterations),
+        wall,
+    };
+    println!(
+        "{}×{} {:?}: {}, peak {:.5}, spikes {:.4} % of it, {} iterations, {} updates, {:.1} s",
+        mesh[0],
+        mesh[1],
+        row.sets,
+        if row.complete { "full insertion" } else { "FAILED" },
+        row.peak,
+        100.0 * row.spike,
+        row.iterations,
+        row.augmentations,
+        wall
+    );
+    row
+}
+
+fn smoothing(mesh: [usize; 2]) -> [Row; 3] {
+    ["none", "hermite", "bezier"].map(|s| run(mesh, &[&format!("contact.master_smoothing={s}")]))
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release tier")]
+fn smoothed_faces_reach_full_insertion_with_smaller_crossing_spikes() {
+    // measured (docs/methods.md): spikes 24×1 0.060 / 0.071 / 0.031 %, 48×2 0.149 / 0.102 /
+    // 0.030 % (none / hermite / bezier)
+    for (mesh, bound) in [([24, 1], [0.0007, 0.0008, 0.0004]), ([48, 2], [0.0017, 0.0012, 0.0004])] {
+        let rows = smoothing(mesh);
+        for (r, b) in rows.iter().zip(bound) {
+            assert!(r.complete, "{r:?}");
+            assert!(r.spike < b, "{r:?}: spikes above {b}");
+        }
+        let [none, hermite, bezier] = &rows;
+        assert!(bezier.spike < hermite.spike && bezier.spike < none.spike, "{rows:?}");
+        // the smoothed face changes the peak by less than its spikes
+        for r in [hermite, bezier] {
+            assert!((r.peak / none.peak - 1.0).abs() < 2e-3, "{r:?} vs {none:?}");
+        }
+    }
+}
+
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release tier")]
+fn augmented_peak_force_does_not_depend_on_the_penalty() {
+    let eps = [2.1e3, 2.1e4, 2.1e5];
+    let spread = |enforcement: &str, smoothing: &str, mesh: [usize; 2]| {
+        let peaks: Vec<f64> = eps
+            .iter()
+            .map(|e| {
+                let r = run(
+                    mesh,
+                    &[
+                        &format!("contact.eps_n={e}"),
+                        &format!("contact.eps_t={e}"),
+                        &format!("contact.enforcement={enforcement}"),
+                        &format!("contact.master_smoothing={smoothing}"),
+                    ],
+                );
+                assert!(r.complete, "{r:?}");
+                r.peak
+            })
+            .collect();
+        let (lo, hi) = peaks.iter().fold((f64::MAX, f64::MIN), |a, p| (a.0.min(*p), a.1.max(*p)));
+        hi / lo - 1.0
+    };
+    let augmented = spread("augmented", "none", [24, 1]);
+    let penalty = spread("penalty", "none", [24, 1]);
+    println!("24×1: peak spread over eps = 2.1e3 … 2.1e5: augmented {augmented:.2e}, penalty {penalty:.2e}");
+    assert!(augmented < 1e-3, "the issue's bound: {augmented}");
+    // measured 1e-7 against 5.0e-4 with the penalty alone
+    assert!(augmented < 1e-5 && penalty > 3e-4 && penalty < 1e-3, "{augmented} {penalty}");
+    let smooth = spread("augmented", "hermite", [48, 2]);
+    println!("48×2 Hermite face: augmented spread {smooth:.2e}");
+    assert!(smooth < 1e-4, "{smooth}");
+}
+
+/// The table of docs/methods.md: every smoothing on every mesh to 240×8, and the penalty
+/// study over five decades.
+#[test]
+#[ignore = "minutes: cargo test --release --test methods_strip -- --ignored --nocapture"]
+fn methods_strip_full_study() {
+    let mut rows = Vec::new();
+    for mesh in [[24, 1], [48, 2], [120, 4], [240, 8]] {
+        rows.extend(smoothing(mesh));
+    }
+    println!("| mesh | smoothing | outcome | peak force | spikes / peak | Newton its | wall |");
+    println!("|---|---|---|---|---|---|---|");
+    for r in &rows {
+        println!(
+            "| {}×{} | {} | {} | {:.5} | {:.3} % | {} | {:.1} s |",
+            r.mesh[0],
+            r.mesh[1],
+            r.sets[0].trim_start_matches("contact.master_smoothing="),
+            if r.complete { "full insertion" } else { "failed" },
+            r.peak,
+            100.0 * r.spike,
+            r.iterations,
+            r.wall
+        );
+    }
+    for r in &rows {
+        assert!(r.complete, "{r:?}");
+    }
+    // measured (docs/methods.md): spikes / peak in % (none, hermite, bezier) 24×1 0.060,
+    // 0.071, 0.031; 48×2 0.149, 0.102, 0.030; 120×4 0.410, 0.230, 0.061; 240×8 0.803, 0.440,
+    // 0.115: both smoothings cut them from 48×2 on, Bézier most, none below 0.1 % on 240×8
+    for chunk in rows.chunks(3).skip(1) {
+        let [none, hermite, bezier] = chunk else { unreachable!() };
+        assert!(bezier.spike < hermite.spike && hermite.spike < 0.7 * none.spike, "{chunk:?}");
+        assert!(bezier.spike < 1.5e-3, "{chunk:?}");
+    }
+    for e in [2.1e2, 2.1e3, 2.1e4, 2.1e5, 2.1e6] {
+        for en in ["penalty", "augmented"] {
+            run(
+                [24, 1],
+                &[
+                    &format!("contact.eps_n={e}"),
+                    &format!("contact.eps_t={e}"),
+                    &format!("contact.enforcement={en}"),
+                ],
+            );
+        }
+    }
+}
