@@ -84,7 +84,7 @@ fn run(mesh: [usize; 2], mu: f64, scheme: &str) -> (Row, Memory) {
     let outcome = match (&result, &mem.outcome) {
         (Ok(_), _) => "full insertion".to_string(),
         (Err(_), Some(Outcome::Failed { increment, t, kind, .. })) => {
-            format!("{} at increment {increment} (v = {:.3})", kind.name(), 12.0 * t)
+            format!("{} at increment {increment} (v = {:.3})", kind.as_str(), 12.0 * t)
         }
         (Err(e), _) => e.to_string(),
     };
