@@ -117,7 +117,9 @@ fn augmented_peak_force_does_not_depend_on_the_penalty() {
                 r.peak
             })
             .collect();
-        let (lo, hi) = peaks.iter().fold((f64::MAX, f64::MIN), |a, p| (a.0.min(*p), a.1.max(*p)));
+        let (lo, hi) = peaks
+            .iter()
+            .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(*p), a.1.max(*p)));
         hi / lo - 1.0
     };
     let augmented = spread("augmented", "none", [24, 1]);
@@ -125,7 +127,10 @@ fn augmented_peak_force_does_not_depend_on_the_penalty() {
     println!("24×1: peak spread over eps = 2.1e3 … 2.1e5: augmented {augmented:.2e}, penalty {penalty:.2e}");
     assert!(augmented < 1e-3, "the issue's bound: {augmented}");
     // measured 1e-7 against 5.0e-4 with the penalty alone
-    assert!(augmented < 1e-5 && penalty > 3e-4 && penalty < 1e-3, "{augmented} {penalty}");
+    assert!(
+        augmented < 1e-5 && penalty > 3e-4 && penalty < 1e-3,
+        "{augmented} {penalty}"
+    );
     let smooth = spread("augmented", "hermite", [48, 2]);
     println!("48×2 Hermite face: augmented spread {smooth:.2e}");
     assert!(smooth < 1e-4, "{smooth}");
@@ -163,7 +168,10 @@ fn methods_strip_full_study() {
     // 0.115: both smoothings cut them from 48×2 on, Bézier most, none below 0.1 % on 240×8
     for chunk in rows.chunks(3).skip(1) {
         let [none, hermite, bezier] = chunk else { unreachable!() };
-        assert!(bezier.spike < hermite.spike && hermite.spike < 0.7 * none.spike, "{chunk:?}");
+        assert!(
+            bezier.spike < hermite.spike && hermite.spike < 0.7 * none.spike,
+            "{chunk:?}"
+        );
         assert!(bezier.spike < 1.5e-3, "{chunk:?}");
     }
     for e in [2.1e2, 2.1e3, 2.1e4, 2.1e5, 2.1e6] {

@@ -76,8 +76,9 @@ fn polygon(n: usize, r: f64, phase: f64) -> Vec<Px> {
 }
 
 /// Shape of a marker, in pixels around its centre: (outline, filled). `None` = passed.
-/// Filled circle passed, × no convergence, ▲ cycling, ■ diverged, □ inverted element,
-/// △ singular, ○ lost contact, ◆ wrong answer, + bad input / recording.
+/// Filled circle passed, × no convergence, ▲ active-set cycle, ■ diverged, small □ non-finite,
+/// □ inverted element, △ linear solver (singular), ○ lost contact, ◆ wrong answer, + bad input /
+/// recording.
 pub fn marker_shape(kind: Option<FailureKind>, s: f64) -> (Vec<Vec<Px>>, bool) {
     let up = -std::f64::consts::FRAC_PI_2;
     let q = std::f64::consts::FRAC_PI_4;
@@ -89,10 +90,11 @@ pub fn marker_shape(kind: Option<FailureKind>, s: f64) -> (Vec<Vec<Px>>, bool) {
     match kind {
         None => (vec![polygon(16, s, 0.0)], true),
         Some(FailureKind::NoConvergence) => (vec![vec![(-si, -si), (si, si)], vec![(-si, si), (si, -si)]], false),
-        Some(FailureKind::Cycling) => (vec![polygon(3, s * 1.2, up)], true),
+        Some(FailureKind::ActiveSetCycle) => (vec![polygon(3, s * 1.2, up)], true),
         Some(FailureKind::Diverged) => (vec![polygon(4, s * 1.3, q)], true),
+        Some(FailureKind::NonFinite) => (vec![closed(polygon(4, s * 0.9, q))], false),
         Some(FailureKind::InvertedElement) => (vec![closed(polygon(4, s * 1.3, q))], false),
-        Some(FailureKind::Singular) => (vec![closed(polygon(3, s * 1.2, up))], false),
+        Some(FailureKind::LinearSolver) => (vec![closed(polygon(3, s * 1.2, up))], false),
         Some(FailureKind::LostContact) => (vec![closed(polygon(16, s, 0.0))], false),
         Some(FailureKind::WrongAnswer) => (vec![polygon(4, s * 1.3, 0.0)], true),
         Some(FailureKind::BadInput) | Some(FailureKind::Recording) => {
@@ -246,7 +248,12 @@ where
         .map_err(e)?;
     let xs = sorted_values(cells.iter().map(|c| &c.x));
     let ys = sorted_values(cells.iter().map(|c| &c.y));
-    let mut panels: Vec<&str> = cells.iter().map(|c| c.panel.as_str()).collect::<BTreeSet<_>>().into_iter().collect();
+    let mut panels: Vec<&str> = cells
+        .iter()
+        .map(|c| c.panel.as_str())
+        .collect::<BTreeSet<_>>()
+        .into_iter()
+        .collect();
     panels.sort_by(|a, b| value_cmp(a, b));
     let (h, _) = (root.dim_in_pixel().1, ());
     let (main, band) = root.split_vertically(h.saturating_sub(40));
