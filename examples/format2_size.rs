@@ -134,7 +134,13 @@ mod erased {
 
 /// Write `msgs` as an MCAP file with contrail's writer options, the given schemas, and the
 /// metadata and attachments of `extras`.
-fn write(msgs: &Messages, schemas: &BTreeMap<String, (String, Vec<u8>)>, extras: &Extras, level: i32, indexes: bool) -> Vec<u8> {
+fn write(
+    msgs: &Messages,
+    schemas: &BTreeMap<String, (String, Vec<u8>)>,
+    extras: &Extras,
+    level: i32,
+    indexes: bool,
+) -> Vec<u8> {
     let opts = mcap::WriteOptions::new()
         .profile("contrail")
         .compression(Some(mcap::Compression::Zstd))
@@ -214,7 +220,11 @@ fn main() {
         if topic == "/model" {
             model = Some(serde_json::from_slice(data).expect("the model"));
         }
-        f2.extend(rewrite(topic, data, &model).into_iter().map(|d| (topic.clone(), d, *time)));
+        f2.extend(
+            rewrite(topic, data, &model)
+                .into_iter()
+                .map(|d| (topic.clone(), d, *time)),
+        );
     }
     let file2 = write(&f2, &format2_schemas(&extras), &extras, level, indexes);
     if let Some(out) = value("--out") {
@@ -227,7 +237,10 @@ fn main() {
         "format 3     {:>10} bytes (written again without the Foxglove channels)",
         file3_no_foxglove.len()
     );
-    println!("format 2     {:>10} bytes (the same content in format 2's layout)", file2.len());
+    println!(
+        "format 2     {:>10} bytes (the same content in format 2's layout)",
+        file2.len()
+    );
     println!(
         "ratio        {:.2} (format 2 / format 3 file), {:.2} (without the Foxglove channels)",
         file2.len() as f64 / bytes.len() as f64,

@@ -199,13 +199,14 @@ mod tests {
     fn is_figure(line: &str) -> bool {
         let words: Vec<&str> = line.split_whitespace().collect();
         let number = |w: &str| w.trim_start_matches(['(', '≈', '~']).parse::<f64>().is_ok();
-        words.windows(2).any(|w| {
-            number(w[0]) && ["MB", "kB", "KB", "GB", "ms", "%", "%,", "%)"].contains(&w[1])
-        }) || words.iter().any(|w| {
-            let w = w.trim_end_matches([',', ')', ';', '.']);
-            ["MB", "ms", "%"].iter().any(|u| {
-                w.strip_suffix(u).is_some_and(|n| !n.is_empty() && number(n))
+        words
+            .windows(2)
+            .any(|w| number(w[0]) && ["MB", "kB", "KB", "GB", "ms", "%", "%,", "%)"].contains(&w[1]))
+            || words.iter().any(|w| {
+                let w = w.trim_end_matches([',', ')', ';', '.']);
+                ["MB", "ms", "%"]
+                    .iter()
+                    .any(|u| w.strip_suffix(u).is_some_and(|n| !n.is_empty() && number(n)))
             })
-        })
     }
 }
