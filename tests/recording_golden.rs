@@ -5,9 +5,9 @@
 //!
 //! After an intended change of the physics, refresh them with
 //! `CONTRAIL_BLESS=1 cargo test --test recording_golden` and commit `recordings/golden/format3/`.
-//! The format-2 files in `recordings/golden/` are kept as they are: they are what
-//! `tests/recording_formats.rs` reads to check that the readers give the same answers on
-//! both formats.
+//! The older recordings are kept as they are (`recordings/golden/*.mcap`, format 1;
+//! `recordings/golden/format2/`, format 2): `tests/recording_formats.rs` converts them to
+//! format 3 and asserts identical `inspect` reports, `diff` results and records.
 
 use contrail::analysis::diff::{diff, Align, DiffReport};
 use contrail::analysis::recording::Recording;
