@@ -19,8 +19,10 @@ pub struct ConvertArgs {
     /// Compression of the chunks.
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Zstd)]
     pub compression: ChunkCompression,
-    /// zstd level (1–19, or negative for zstd's fast levels).
-    #[arg(long, value_name = "LEVEL", default_value_t = 1, allow_negative_numbers = true)]
+    /// zstd level of the chunks: 1–19 (higher: smaller files, slower to write) or −1 to −7
+    /// (zstd's fast levels: faster, larger).
+    #[arg(long, value_name = "LEVEL", default_value_t = 1, allow_negative_numbers = true,
+          value_parser = clap::value_parser!(i32).range(-7..=19))]
     pub level: i32,
     /// Leave out the message indexes (a smaller file; readers work without them).
     #[arg(long)]

@@ -154,3 +154,59 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// The long help of every subcommand (and of their subcommands).
+    fn helps(cmd: &mut clap::Command, path: &str, out: &mut Vec<(String, String)>) {
+        let path = format!("{path} {}", cmd.get_name());
+        out.push((path.clone(), cmd.render_long_help().to_string()));
+        for sub in cmd.get_subcommands_mut() {
+            helps(sub, &path, out);
+        }
+    }
+
+    #[test]
+    fn figures_are_recognised() {
+        assert!(is_figure("the file is 6.94 MB"));
+        assert!(is_figure("(iterations are 4 % of the file)"));
+        assert!(is_figure("about 40ms"));
+        assert!(!is_figure("every 2 increments, level 19"));
+    }
+
+    #[test]
+    fn help_says_what_options_do_without_rustdoc_links_or_measurements() {
+        let mut all = Vec::new();
+        helps(&mut super::Cli::command(), "", &mut all);
+        assert!(all.len() > 15, "{} help texts", all.len());
+        let run = &all.iter().find(|(p, _)| p.trim() == "contrail run").expect("run").1;
+        assert!(run.contains("--compression <KIND>"), "{run}");
+        // a rustdoc link (`[`Type::item`]`) means a doc comment written for the API reached
+        // the user; a size or a time is the result of one run on one machine, not what the
+        // option does (those go to docs/ with date and command)
+        for (path, text) in &all {
+            assert!(!text.contains("[`"), "{path}: a rustdoc link in the help:\n{text}");
+            for line in text.lines() {
+                assert!(!is_figure(line), "{path}: a measurement in the help: {line}");
+            }
+        }
+    }
+
+    /// A number followed by a unit of size or time or by a percent sign (`6.9 MB`, `40 ms`,
+    /// `4 %`).
+    fn is_figure(line: &str) -> bool {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let number = |w: &str| w.trim_start_matches(['(', '≈', '~']).parse::<f64>().is_ok();
+        words
+            .windows(2)
+            .any(|w| number(w[0]) && ["MB", "kB", "KB", "GB", "ms", "%", "%,", "%)"].contains(&w[1]))
+            || words.iter().any(|w| {
+                let w = w.trim_end_matches([',', ')', ';', '.']);
+                ["MB", "ms", "%"]
+                    .iter()
+                    .any(|u| w.strip_suffix(u).is_some_and(|n| !n.is_empty() && number(n)))
+            })
+    }
+}

@@ -32,10 +32,11 @@ pub struct RunArgs {
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
-    /// Compression of the `.mcap` chunks: zstd (level 1), lz4 or none.
+    /// Compression of the `.mcap` chunks: zstd (at `--compression-level`), lz4 or none.
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Zstd)]
     pub compression: ChunkCompression,
-    /// zstd level of the `.mcap` chunks (1–19; negative: zstd's fast levels).
+    /// zstd level of the `.mcap` chunks: 1–19 (higher: smaller files, slower to write) or
+    /// −1 to −7 (zstd's fast levels: faster, larger).
     #[arg(long, value_name = "LEVEL", default_value_t = 1, allow_negative_numbers = true,
           value_parser = clap::value_parser!(i32).range(-7..=19))]
     pub compression_level: i32,

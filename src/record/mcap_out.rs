@@ -9,16 +9,17 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 
-/// How the chunks of a recording are compressed.
+/// How the chunks of a recording are compressed. The doc comments of the variants are the
+/// help text of `contrail run --compression`: they say what a choice does; what each costs
+/// and saves on a run is measured in `docs/recording.md` (Size and cost).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum ChunkCompression {
-    /// zstd at [`Compression::zstd_level`] (default; see `docs/recording.md` for the
-    /// measurements behind the choice).
+    /// zstd (default; its level is an option of its own)
     #[default]
     Zstd,
-    /// LZ4 frames: larger files, cheaper to write.
+    /// LZ4 frames (larger files than zstd)
     Lz4,
-    /// No compression.
+    /// No compression (the largest files)
     None,
 }
 

@@ -49,14 +49,12 @@ pub struct McapOptions {
 /// Which Newton iterations are written on `/iteration`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Iterations {
-    /// Every iteration, as it happens (default: on the seed's benchmark the iterations of
-    /// converged attempts are 4 % of the file and of the writer's work, see
-    /// `docs/recording.md`).
+    /// Every iteration, as it happens (default)
     #[default]
     All,
     /// Only the iterations of attempts that failed (cut-backs, retries, the failure), written
     /// at the end of their increment; the residuals of a converged attempt stay on
-    /// `/increment`.
+    /// `/increment`
     Failed,
 }
 
