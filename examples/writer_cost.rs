@@ -6,12 +6,15 @@ use std::io::Cursor;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+/// An increment as the sink saw it: its record, displacements, contact points, crossings.
+type TapedIncrement = (IncrementRecord, Vec<f64>, Vec<ContactPointRecord>, Vec<CrossingRecord>);
+
 #[derive(Default)]
 struct Tape {
     model: Option<Model>,
     info: Option<RunInfo>,
     its: Vec<IterationRecord>,
-    incs: Vec<(IncrementRecord, Vec<f64>, Vec<ContactPointRecord>, Vec<CrossingRecord>)>,
+    incs: Vec<TapedIncrement>,
     order: Vec<bool>, // true = increment
     outcome: Option<Outcome>,
 }

@@ -19,7 +19,7 @@ mod common;
 use contrail::assembly::Assembler;
 use contrail::contact::law::ContactState;
 use contrail::linalg::sparse::LinearSolver;
-use contrail::solver::newton::{solve_increment, Workspace};
+use contrail::solver::newton::{solve_increment, IncrementTarget, Workspace};
 use contrail::solver::state::TrialState;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -61,16 +61,20 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
     // v = 0.02 of 12 in one increment from rest: the strip bends over C
     let t = 0.02 / 12.0;
     state.contact.reset_current();
+    let target = IncrementTarget {
+        t,
+        reference_floor: 0.0,
+        increment: 1,
+        attempt: 0,
+        predicted: false,
+    };
     solve_increment(
         model,
         &problem.settings.newton,
         &mut asm,
         &mut state,
-        t,
-        0.0,
+        target,
         &mut |_| true,
-        (1, 0),
-        false,
         &mut ws,
     )
     .expect("the first increment converges");

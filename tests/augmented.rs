@@ -28,7 +28,12 @@ use contrail::contact::law::ContactState;
 const EPS: f64 = 1e8;
 
 fn crossing(sets: &[&str]) -> contrail::problem::Problem {
-    let mut all = vec!["contact.enforcement=augmented", "contact.eps_n=1e8", "contact.eps_t=1e8", "contact.mu=0"];
+    let mut all = vec![
+        "contact.enforcement=augmented",
+        "contact.eps_n=1e8",
+        "contact.eps_t=1e8",
+        "contact.mu=0",
+    ];
     all.extend_from_slice(sets);
     common::scene("crossing", &all)
 }
@@ -58,7 +63,10 @@ fn augmented_point_meets_the_normal_constraint_and_records_its_multiplier() {
     // the penalty alone: the point sinks by N/ε_N, and records no multiplier
     let (_, pen) = common::solve_ok(&common::scene("crossing", &["contact.eps_n=1e8", "contact.mu=0"]));
     let last = pen.contact.last().unwrap()[0].clone();
-    assert!((last.gap * EPS + last.normal_force).abs() < 1e-6 * last.normal_force, "{last:?}");
+    assert!(
+        (last.gap * EPS + last.normal_force).abs() < 1e-6 * last.normal_force,
+        "{last:?}"
+    );
     assert!(last.multiplier.iter().all(|m| m.is_nan()));
 }
 
@@ -105,7 +113,11 @@ fn augmented_stick_does_not_creep_and_carries_its_tangential_multiplier() {
 fn a_soft_penalty_converges_too_slowly_and_the_cap_fails_the_increment() {
     let p = common::scene(
         "crossing",
-        &["contact.enforcement=augmented", "contact.augmented_max=10", "stepping.max_cutbacks=0"],
+        &[
+            "contact.enforcement=augmented",
+            "contact.augmented_max=10",
+            "stepping.max_cutbacks=0",
+        ],
     );
     let e = common::solve(&p).0.unwrap_err().to_string();
     assert!(e.contains("not converged after 10 multiplier updates"), "{e}");
@@ -113,7 +125,11 @@ fn a_soft_penalty_converges_too_slowly_and_the_cap_fails_the_increment() {
 
 #[test]
 fn an_unreachable_tolerance_fails_the_increment_with_a_message_naming_the_pair() {
-    let p = crossing(&["contact.augmented_tol=1e-17", "contact.augmented_max=1", "stepping.max_cutbacks=0"]);
+    let p = crossing(&[
+        "contact.augmented_tol=1e-17",
+        "contact.augmented_max=1",
+        "stepping.max_cutbacks=0",
+    ]);
     let (r, _) = common::solve(&p);
     let e = r.unwrap_err().to_string();
     assert!(

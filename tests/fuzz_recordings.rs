@@ -69,8 +69,11 @@ struct Message {
     data: Vec<u8>,
 }
 
-fn messages(b: usize) -> &'static (Vec<Message>, BTreeMap<String, String>) {
-    static M: OnceLock<[(Vec<Message>, BTreeMap<String, String>); 2]> = OnceLock::new();
+/// A base recording's messages and its metadata.
+type Base = (Vec<Message>, BTreeMap<String, String>);
+
+fn messages(b: usize) -> &'static Base {
+    static M: OnceLock<[Base; 2]> = OnceLock::new();
     let all = M.get_or_init(|| {
         [0, 1].map(|b| {
             let r = Recording::from_bytes(base(b), "base").unwrap();

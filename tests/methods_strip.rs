@@ -168,9 +168,15 @@ fn crossing_spikes_are_the_tilt_of_the_normal_at_the_corner() {
     for r in [&coarse, &fine] {
         assert!(r.complete && r.tilt_force_correlation < -0.99, "{r:?}");
         // dF/dθ ≈ −4.5 here: the spikes are the tilt times the force's lever, not more
-        assert!(r.spike * r.peak < 6.0 * r.tilt && r.spike * r.peak > 3.0 * r.tilt, "{r:?}");
+        assert!(
+            r.spike * r.peak < 6.0 * r.tilt && r.spike * r.peak > 3.0 * r.tilt,
+            "{r:?}"
+        );
     }
-    assert!(fine.tilt > 1.1 * coarse.tilt, "the tilt grows under refinement: {coarse:?} {fine:?}");
+    assert!(
+        fine.tilt > 1.1 * coarse.tilt,
+        "the tilt grows under refinement: {coarse:?} {fine:?}"
+    );
 }
 
 /// The issue's criterion as it stands: the Hermite face's spikes below 0.1 % of the peak on
@@ -187,7 +193,11 @@ fn hermite_face_meets_the_issue_spike_bound_on_every_mesh() {
         .filter(|r| !r.complete || r.spike >= 1e-3)
         .map(|r| format!("{}×{}: {:.3} %", r.mesh[0], r.mesh[1], 100.0 * r.spike))
         .collect();
-    assert!(over.is_empty(), "spikes at or above 0.1 % of the peak: {}", over.join(", "));
+    assert!(
+        over.is_empty(),
+        "spikes at or above 0.1 % of the peak: {}",
+        over.join(", ")
+    );
 }
 
 #[test]
@@ -211,7 +221,9 @@ fn augmented_peak_force_does_not_depend_on_the_penalty() {
                 r.peak
             })
             .collect();
-        let (lo, hi) = peaks.iter().fold((f64::MAX, f64::MIN), |a, p| (a.0.min(*p), a.1.max(*p)));
+        let (lo, hi) = peaks
+            .iter()
+            .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(*p), a.1.max(*p)));
         hi / lo - 1.0
     };
     let augmented = spread("augmented", "none", [24, 1]);
@@ -219,7 +231,10 @@ fn augmented_peak_force_does_not_depend_on_the_penalty() {
     println!("24×1: peak spread over eps = 2.1e3 … 2.1e5: augmented {augmented:.2e}, penalty {penalty:.2e}");
     assert!(augmented < 1e-3, "the issue's bound: {augmented}");
     // measured 4.6e-10 against 4.9e-4 with the penalty alone
-    assert!(augmented < 1e-5 && penalty > 3e-4 && penalty < 1e-3, "{augmented} {penalty}");
+    assert!(
+        augmented < 1e-5 && penalty > 3e-4 && penalty < 1e-3,
+        "{augmented} {penalty}"
+    );
     let smooth = spread("augmented", "hermite", [48, 2]);
     println!("48×2 Hermite face: augmented spread {smooth:.2e}");
     assert!(smooth < 1e-4, "{smooth}");
@@ -258,7 +273,10 @@ fn methods_strip_full_study() {
     // 0.117: both smoothings cut them from 48×2 on, Bézier most, none below 0.1 % on 240×8
     for chunk in rows.chunks(3).skip(1) {
         let [none, hermite, bezier] = chunk else { unreachable!() };
-        assert!(bezier.spike < hermite.spike && hermite.spike < 0.7 * none.spike, "{chunk:?}");
+        assert!(
+            bezier.spike < hermite.spike && hermite.spike < 0.7 * none.spike,
+            "{chunk:?}"
+        );
         assert!(bezier.spike < 1.5e-3, "{chunk:?}");
     }
     for e in [2.1e2, 2.1e3, 2.1e4, 2.1e5, 2.1e6] {

@@ -246,7 +246,12 @@ where
         .map_err(e)?;
     let xs = sorted_values(cells.iter().map(|c| &c.x));
     let ys = sorted_values(cells.iter().map(|c| &c.y));
-    let mut panels: Vec<&str> = cells.iter().map(|c| c.panel.as_str()).collect::<BTreeSet<_>>().into_iter().collect();
+    let mut panels: Vec<&str> = cells
+        .iter()
+        .map(|c| c.panel.as_str())
+        .collect::<BTreeSet<_>>()
+        .into_iter()
+        .collect();
     panels.sort_by(|a, b| value_cmp(a, b));
     let (h, _) = (root.dim_in_pixel().1, ());
     let (main, band) = root.split_vertically(h.saturating_sub(40));

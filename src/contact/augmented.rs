@@ -124,7 +124,7 @@ mod tests {
             },
             normal_force: n,
             t1_trial: t1,
-            t1: t1,
+            t1,
             state,
             t1_carried: carried,
         }

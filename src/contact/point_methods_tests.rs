@@ -73,7 +73,10 @@ fn problem(face: Face, scheme: TransferKind, came: Came, mu: f64) -> PointProble
                 tangent: [0.998, 0.0632],
             },
             seg_a: segment(face, seg_a),
-            path: Path { direction, between: 0.0 },
+            path: Path {
+                direction,
+                between: 0.0,
+            },
             touch_gap: None,
         }),
         forced: None,
@@ -94,7 +97,10 @@ fn every_scheme_on_every_face_has_consistent_tangents_in_stick_slip_and_friction
             for came in CAME {
                 let what = format!("{face:?} {scheme:?} {came:?}");
                 let p = problem(face, scheme, came, 1e3);
-                assert!(p.evaluate_f64().proj.xi.abs() < 1.0, "{what}: the slave is over segment 3");
+                assert!(
+                    p.evaluate_f64().proj.xi.abs() < 1.0,
+                    "{what}: the slave is over segment 3"
+                );
                 fd_check(&p, ContactState::Stick);
                 fd_check(&problem(face, scheme, came, 0.01), ContactState::Slip);
                 fd_check(&problem(face, scheme, came, 0.0), ContactState::Slip);
@@ -192,7 +198,11 @@ fn augmented_carried_traction_is_the_trial_without_this_increments_slip() {
             e.proj,
         ));
         let expect = carried + e.proj.a11.sqrt() * m.tangential;
-        assert!((e.t1_carried - expect).abs() < 1e-12, "{scheme:?}: {} vs {expect}", e.t1_carried);
+        assert!(
+            (e.t1_carried - expect).abs() < 1e-12,
+            "{scheme:?}: {} vs {expect}",
+            e.t1_carried
+        );
         // penalty points do not work it out
         p.multiplier = None;
         assert_eq!(p.evaluate_f64().t1_carried, 0.0);

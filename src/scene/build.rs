@@ -394,7 +394,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         .collect();
     for (pair, slave_body) in implied {
         match pair {
-            build_pairs::Implied::SecondPass(p) => m.contacts.push(p),
+            build_pairs::Implied::SecondPass(p) => m.contacts.push(*p),
             build_pairs::Implied::Vertices(ip) => {
                 if let Some(p) = build_pairs::vertex_pair(&m, &m.contacts[ip], slave_body, &taken) {
                     m.contacts.push(p);
@@ -440,7 +440,10 @@ fn refuse_rounded_vertex(cx: &Ctx, s: &SceneFile, c: &ContactSpec) -> Result<(),
     match s.rigid.iter().find(|x| x.name == *r).and_then(|x| x.fillet) {
         Some(radius) => Err(cx.err(
             &c.name,
-            format!("contact `{}`: vertex {v} of `{r}` is rounded by its fillet (r = {radius}): it is no point", c.name),
+            format!(
+                "contact `{}`: vertex {v} of `{r}` is rounded by its fillet (r = {radius}): it is no point",
+                c.name
+            ),
             "remove the pair (the outline's arc meets the slave nodes itself), or remove the fillet",
         )),
         None => Ok(()),

@@ -4,9 +4,7 @@
 use super::build::{body_index, Ctx};
 use super::types::ContactSpec;
 use super::SceneError;
-use crate::model::{
-    chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave,
-};
+use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave};
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
 /// joined tangentially to its lines has none, a polygon of 1000 facets turns 0.0063 rad.
@@ -165,7 +163,7 @@ pub fn own_vertices(m: &mut Model) {
 /// A pair a scene's `[[contact]]` implies besides itself.
 pub(super) enum Implied {
     /// The second pass of a two-pass pair.
-    SecondPass(ContactPair),
+    SecondPass(Box<ContactPair>),
     /// The convex vertices of the rigid master of the pair with this index.
     Vertices(usize),
 }
@@ -192,7 +190,7 @@ pub(super) fn implied_pairs(
                     "give `slave.nodes` a set of boundary nodes (e.g. \"bottom\"), or set two_pass = false",
                 )
             })?;
-            out.push((Implied::SecondPass(second), sb));
+            out.push((Implied::SecondPass(Box::new(second)), sb));
         }
         _ if c.two_pass => {
             return Err(cx.err(

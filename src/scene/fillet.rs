@@ -52,11 +52,7 @@ pub fn fillet(pieces: &[Piece], r: f64) -> Result<Vec<Piece>, String> {
     let mut trim = vec![[0.0f64; 2]; n]; // taken off the start and the end of each piece
     let mut arcs: Vec<Option<Piece>> = vec![None; n]; // the arc after piece k
     for k in 1..n {
-        let (
-            Piece::Segment { a: a1, b: b1 },
-            Piece::Segment { a: a2, b: b2 },
-        ) = (pieces[k - 1], pieces[k])
-        else {
+        let (Piece::Segment { a: a1, b: b1 }, Piece::Segment { a: a2, b: b2 }) = (pieces[k - 1], pieces[k]) else {
             continue;
         };
         let ((d1, _), (d2, _)) = (unit(a1, b1), unit(a2, b2));
@@ -139,7 +135,9 @@ mod tests {
             let (pb, tb) = w[1].eval(-1.0);
             assert!(close(pa, pb), "{w:?}");
             let cross = ta[0] * tb[1] - ta[1] * tb[0];
-            assert!(cross.abs() < 1e-12 * ta[0].hypot(ta[1]) * tb[0].hypot(tb[1]) && ta[0] * tb[0] + ta[1] * tb[1] > 0.0);
+            assert!(
+                cross.abs() < 1e-12 * ta[0].hypot(ta[1]) * tb[0].hypot(tb[1]) && ta[0] * tb[0] + ta[1] * tb[1] > 0.0
+            );
         }
         // a right turn (concave vertex: a seat) runs clockwise
         let seat = [

@@ -4,9 +4,9 @@
 //! overrides are applied to the parsed TOML before it is checked.
 
 mod build;
-pub mod fillet;
 pub mod build_pairs;
 pub mod builtin;
+pub mod fillet;
 pub mod initial_contact;
 mod mesh;
 pub mod monitors;

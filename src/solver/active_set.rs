@@ -16,6 +16,9 @@
 //! failed verification instead, a primal–dual active-set round, was tried: on the 120×4
 //! strip at rest on the block it cycled between two active sets at the lift-off point.)
 
+use super::newton::{apply, NewtonFailure, Workspace};
+use super::state::TrialState;
+use crate::assembly::Assembler;
 use crate::contact::law::ContactState;
 use crate::contact::system::{ContactSystem, Decision};
 use crate::model::Model;
@@ -254,4 +257,37 @@ pub fn touching_points(contact: &ContactSystem) -> Vec<usize> {
         })
         .map(|(flat, _)| flat)
         .collect()
+}
+
+/// The touching points (see [`touching_points`]) that a first correction with them open
+/// pushes into their master: one linear solve and one residual assembly at the trial, then
+/// the first iterate is assembled again (nothing is done when no point touches).
+pub(super) fn touching_pushed_in(
+    model: &Model,
+    asm: &mut Assembler,
+    state: &mut TrialState,
+    t: f64,
+    ws: &mut Workspace,
+) -> Result<Vec<usize>, NewtonFailure> {
+    let touching = touching_points(&state.contact);
+    if touching.is_empty() {
+        return Ok(touching);
+    }
+    asm.free_residual(&mut ws.r);
+    for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
+        *d = -ri;
+    }
+    asm.matrix.solve(&mut ws.du)?;
+    apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
+    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
+    let closed = |flat: &usize| {
+        let (ip, is) = state.contact.point_index(*flat);
+        state.contact.current[ip][is]
+            .eval
+            .is_some_and(|e| e.state != ContactState::Open)
+    };
+    let pushed: Vec<usize> = touching.into_iter().filter(closed).collect();
+    apply(&mut state.u, &asm.dofs.eq, &ws.du, -1.0);
+    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+    Ok(pushed)
 }

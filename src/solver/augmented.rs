@@ -4,33 +4,28 @@
 //! tolerance — or fail the increment when a pair still has not converged after its cap on
 //! updates (the stepping driver then cuts the step back like any failed increment).
 
-use super::newton::{solve_increment, Converged, NewtonFailure, Workspace};
+use super::newton::{solve_increment, Converged, IncrementTarget, NewtonFailure, Workspace};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::model::{Enforcement, Model};
 use crate::record::IterationRecord;
 use crate::settings::NewtonSettings;
 
-/// Solve the increment at time `t` (arguments as [`solve_increment`]) and, when the model
+/// Solve the increment at `target` (arguments as [`solve_increment`]) and, when the model
 /// has augmented pairs, repeat it with updated multipliers until they converge. The
 /// iteration records of the repeated solves continue the numbering of the first; the
 /// returned [`Converged`] sums the iterations and joins the residual histories
 /// (`augmentations`: the number of updates made).
-#[allow(clippy::too_many_arguments)]
 pub fn solve_augmented(
     model: &Model,
     settings: &NewtonSettings,
     asm: &mut Assembler,
     state: &mut TrialState,
-    t: f64,
-    reference_floor: f64,
+    target: IncrementTarget,
     record: &mut dyn FnMut(IterationRecord) -> bool,
-    (increment, attempt): (usize, usize),
-    predicted: bool,
     ws: &mut Workspace,
 ) -> Result<Converged, NewtonFailure> {
-    let ids = (increment, attempt);
-    let mut conv = solve_increment(model, settings, asm, state, t, reference_floor, record, ids, predicted, ws)?;
+    let mut conv = solve_increment(model, settings, asm, state, target, record, ws)?;
     let augmented = |p: &crate::model::ContactPair| matches!(p.enforcement, Enforcement::Augmented { .. });
     if !model.contacts.iter().any(augmented) {
         return Ok(conv);
@@ -57,18 +52,12 @@ pub fn solve_augmented(
             r.iteration += offset;
             record(r)
         };
-        let next = solve_increment(
-            model,
-            settings,
-            asm,
-            state,
-            t,
-            reference_floor.max(conv.reference),
-            &mut renumbered,
-            ids,
-            false,
-            ws,
-        )?;
+        let again = IncrementTarget {
+            reference_floor: target.reference_floor.max(conv.reference),
+            predicted: false,
+            ..target
+        };
+        let next = solve_increment(model, settings, asm, state, again, &mut renumbered, ws)?;
         conv.iterations += next.iterations;
         conv.residuals.extend(next.residuals);
         conv.reference = conv.reference.max(next.reference);

@@ -3,10 +3,12 @@
 pub mod active_set;
 pub mod augmented;
 pub mod element_check;
+mod line_search;
 pub mod monitor;
 pub mod newton;
 pub mod run;
 pub mod state;
+mod stepping;
 pub mod tangent_check;
 
 pub use run::{run, RunSummary, SolveError};

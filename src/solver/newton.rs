@@ -1,7 +1,8 @@
 //! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
 //! optional backtracking line search.
 
-use super::active_set::{hold_first_correction, touching_points, ActiveSetWatch};
+use super::active_set::{hold_first_correction, touching_pushed_in, ActiveSetWatch};
+use super::line_search::{residual_backtracking, slope_search};
 use super::state::TrialState;
 use crate::assembly::{Assembler, AssemblyError};
 use crate::linalg::sparse::LinearError;
@@ -78,8 +79,8 @@ fn reference_force(model: &Model, asm: &Assembler, t: f64) -> f64 {
 /// Buffers and diagnostics of one attempt, reused across increments.
 #[derive(Debug, Default)]
 pub struct Workspace {
-    r: Vec<f64>,
-    du: Vec<f64>,
+    pub(super) r: Vec<f64>,
+    pub(super) du: Vec<f64>,
     frozen: Vec<bool>,
     /// Points held (closed, or in stick) for the first correction of an attempt.
     held: Vec<usize>,
@@ -89,12 +90,25 @@ pub struct Workspace {
     pub watch: ActiveSetWatch,
 }
 
-/// Iterate to equilibrium at time `t` starting from `state` (prescribed DOFs are set here).
+/// Which increment is solved, to what time, and from what start.
+#[derive(Debug, Clone, Copy)]
+pub struct IncrementTarget {
+    /// The pseudo-time the increment ends at.
+    pub t: f64,
+    /// The largest reference force of the run so far (`F_ref` never falls below it).
+    pub reference_floor: f64,
+    pub increment: usize,
+    pub attempt: usize,
+    /// The start is extrapolated from the last converged increments (secant predictor).
+    pub predicted: bool,
+}
+
+/// Iterate to equilibrium at `target.t` starting from `state` (prescribed DOFs are set here).
 /// `on_iteration` receives one record per correction; failures leave `state` dirty (the
-/// caller restores the last converged one). `predicted`: `state` is an extrapolated start;
-/// points it finds open that were closed at the last converged increment are held closed
-/// for the first correction ([`hold_first_correction`]; the first residual recorded is
-/// then that of the held state).
+/// caller restores the last converged one). `target.predicted`: `state` is an extrapolated
+/// start; points it finds open that were closed at the last converged increment are held
+/// closed for the first correction ([`hold_first_correction`]; the first residual recorded
+/// is then that of the held state).
 ///
 /// Converged when `‖R‖ ≤ max(tol · F_ref, residual_abs, ε_round)` and the energy norm of the
 /// last correction fell below `energy_tol` times that of the first, where `F_ref` is the
@@ -102,180 +116,37 @@ pub struct Workspace {
 /// `ε_round = 1e-13 ‖Σ|r_e|‖` is the round-off level of the assembled residual (the norm
 /// of the summed absolute element and contact contributions): refining the mesh or the
 /// step never asks for a residual below what the arithmetic can resolve.
-#[allow(clippy::too_many_arguments)]
+///
+/// Each iteration is the textbook sequence of named steps: assemble, test convergence
+/// (verifying frozen points), correct, search along the correction, watch the active set.
 pub fn solve_increment(
     model: &Model,
     settings: &NewtonSettings,
     asm: &mut Assembler,
     state: &mut TrialState,
-    t: f64,
-    reference_floor: f64,
+    target: IncrementTarget,
     record: &mut dyn FnMut(IterationRecord) -> bool,
-    (increment, attempt): (usize, usize),
-    predicted: bool,
     ws: &mut Workspace,
 ) -> Result<Converged, NewtonFailure> {
-    ws.residuals.clear();
-    ws.held.clear();
-    for p in &model.prescribed {
-        state.u[p.dof] = p.ramp.at(t);
-    }
-    let n = asm.dofs.n_free;
-    ws.r.resize(n, 0.0);
-    ws.du.resize(n, 0.0);
-    let mut e0 = 0.0f64;
-    let mut e_last = f64::INFINITY;
-    let mut r0 = 0.0f64;
-    let mut freezing = settings.freeze_after > 0;
-    let mut verified_once = false;
-    let mut started = false;
-    // the line search's full-step trial assembles the residual and, unless the step is
-    // expected to converge, the tangent: when it accepts s = 1, the next iteration starts
-    // from that assembly instead of repeating it (and adds the tangent only if it must go on)
-    let mut assembled = Assembled::Nothing;
+    let mut it = Iterate::start(model, settings, asm, state, target, ws)?;
     for k in 0..=settings.max_iterations {
-        if assembled == Assembled::Nothing {
-            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-            assembled = Assembled::Full;
-        }
-        if !started {
-            let retry = attempt > 0 && !predicted;
-            let pushed_in = touching_pushed_in(model, asm, state, t, ws)?;
-            if hold_first_correction(&mut state.contact, model, (predicted, retry), &pushed_in, &mut ws.held) > 0 {
-                asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-            }
-            ws.watch.start(&state.contact);
-            ws.frozen.clear();
-            ws.frozen.resize(state.contact.signature_len(), false);
-            started = true;
-        }
-        asm.free_residual(&mut ws.r);
-        let rn = norm(&ws.r);
-        if !rn.is_finite() {
-            return Err(NewtonFailure::NonFinite);
-        }
-        ws.residuals.push(rn);
-        let fref = reference_force(model, asm, t).max(reference_floor);
-        if k == 0 {
-            r0 = rn;
-        }
-        let tol = (settings.residual_tol * fref)
-            .max(settings.residual_abs)
-            .max(asm.roundoff());
-        let res_ok = rn <= tol;
-        let energy_ok = k > 0 && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE);
-        if res_ok && (energy_ok || k == 0 || rn <= settings.residual_abs.max(asm.roundoff())) {
-            let frozen = state.contact.frozen_count();
-            if frozen == 0 {
-                return Ok(Converged {
-                    iterations: k,
-                    residuals: ws.residuals.clone(),
-                    reference: fref,
-                    frozen: ws.frozen.iter().filter(|f| **f).count(),
-                    augmentations: 0,
-                });
-            }
-            // release the frozen states (keeping admissible segments) and check them; points
-            // held for the first correction of a predicted start (only ever at k = 0) are
-            // checked alike but are not reported as frozen (they were not chattering)
-            let chattering = frozen - ws.held.len();
-            state.contact.verify_frozen();
-            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-            assembled = Assembled::Full;
-            asm.free_residual(&mut ws.r);
-            let rv = norm(&ws.r);
-            if rv <= tol {
-                ws.residuals.push(rv);
-                return Ok(Converged {
-                    iterations: k,
-                    residuals: ws.residuals.clone(),
-                    reference: fref,
-                    frozen: chattering,
-                    augmentations: 0,
-                });
-            }
-            if verified_once {
-                return Err(NewtonFailure::FrozenNotVerified { residual: rv });
-            }
-            // go on from here with every point free to choose (no more freezing)
-            state.contact.unfreeze();
-            verified_once = true;
-            freezing = false;
-            e0 = 0.0;
-        }
-        if rn > settings.divergence_factor * r0.max(fref) {
-            return Err(NewtonFailure::Diverged { residual: rn });
+        it.assemble_if_needed()?;
+        if let Some(converged) = it.test_convergence(k)? {
+            return Ok(converged);
         }
         if k == settings.max_iterations {
             break;
         }
-        if assembled == Assembled::Residual {
-            // the residual-only trial did not converge after all: its tangent now
-            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-        }
-        for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
-            *d = -ri;
-        }
-        asm.matrix.solve(&mut ws.du)?;
-        let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
-        if e0 == 0.0 {
-            e0 = energy;
-        }
-        e_last = energy;
-        apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
-        // the held points are free again once the first correction is computed: the line
-        // search's trials (and so the next iterate) are assembled with their own state;
-        // a correction made with stick held is the elastic predictor, taken in full (the
-        // return mapping at its end finds the slipping points; backtracking on ‖R‖ from it
-        // would undo the motion the stick tangent predicted)
-        let elastic_predictor = state.contact.stick_held_count() > 0;
-        for flat in ws.held.drain(..) {
-            state.contact.release(flat);
-        }
-        // Will the full step converge? Then its trial needs no tangent (one fewer per
-        // increment): the energy test is already met by this correction and the residual,
-        // reduced at the rate of the last iteration (an overestimate where convergence is
-        // quadratic), falls below the tolerance. A wrong guess costs one more assembly.
-        let r_prev = ws.residuals.len().checked_sub(2).map(|i| ws.residuals[i]);
-        let likely_converged = k > 0
-            && e_last <= settings.energy_tol * e0.max(f64::MIN_POSITIVE)
-            && r_prev.is_some_and(|rp| rp > 0.0 && rn * (rn / rp) <= tol);
-        let want_tangent = !likely_converged;
-        let (step, reuse) = if !settings.line_search || elastic_predictor {
-            (1.0, None)
-        } else {
-            // g(0) = Δu·R(u) < 0 along a descent direction (a symmetric positive tangent)
-            let g0 = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
-            // the slope is that of an energy only for a conservative iterate (no frictional
-            // slip): elsewhere the residual norm is the merit
-            let slope_ok =
-                settings.line_search_rule == LineSearch::Slope && g0 < 0.0 && state.contact.conservative(model);
-            if slope_ok {
-                slope_search(model, asm, state, t, ws, g0, want_tangent)?
-            } else {
-                residual_backtracking(model, asm, state, t, ws, rn, want_tangent)?
-            }
-        };
-        let changes = ws.watch.observe(&state.contact, k + 1);
-        // frozen decisions change what the next assembly computes
-        let froze = freezing
-            && ws
-                .watch
-                .freeze_chattering(&mut state.contact, settings.freeze_after, &mut ws.frozen)
-                > 0;
-        assembled = match (reuse, froze) {
-            (Some(true), false) => Assembled::Full,
-            (Some(false), false) => Assembled::Residual,
-            _ => Assembled::Nothing,
-        };
+        let (energy, step, reuse) = it.correct(k)?;
+        let changes = it.watch_active_set(k, reuse);
         let keep_going = record(IterationRecord {
-            increment,
-            attempt,
-            t,
+            increment: target.increment,
+            attempt: target.attempt,
+            t: target.t,
             iteration: k + 1,
-            residual: rn,
+            residual: it.rn,
             energy,
-            reference: fref,
+            reference: it.fref,
             line_search: step,
             active_set_changes: changes,
         });
@@ -283,133 +154,266 @@ pub fn solve_increment(
             break;
         }
     }
-    let iterations = ws.residuals.len() - 1;
-    if ws.watch.cycling(3) {
-        let points = ws.watch.report(&state.contact, model, usize::MAX).len();
-        return Err(NewtonFailure::ActiveSetCycle { iterations, points });
-    }
-    Err(NewtonFailure::MaxIterations { iterations })
+    Err(it.failure())
 }
 
-/// The touching points (see [`touching_points`]) that a first correction with them open
-/// pushes into their master: one linear solve and one residual assembly at the trial, then
-/// the first iterate is assembled again (nothing is done when no point touches).
-fn touching_pushed_in(
-    model: &Model,
-    asm: &mut Assembler,
-    state: &mut TrialState,
+/// The state of Newton's iteration within one attempt at an increment.
+struct Iterate<'a> {
+    model: &'a Model,
+    settings: &'a NewtonSettings,
+    asm: &'a mut Assembler,
+    state: &'a mut TrialState,
+    ws: &'a mut Workspace,
     t: f64,
-    ws: &mut Workspace,
-) -> Result<Vec<usize>, NewtonFailure> {
-    let touching = touching_points(&state.contact);
-    if touching.is_empty() {
-        return Ok(touching);
-    }
-    asm.free_residual(&mut ws.r);
-    for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
-        *d = -ri;
-    }
-    asm.matrix.solve(&mut ws.du)?;
-    apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
-    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
-    let closed = |flat: &usize| {
-        let (ip, is) = state.contact.point_index(*flat);
-        state.contact.current[ip][is]
-            .eval
-            .is_some_and(|e| e.state != crate::contact::law::ContactState::Open)
-    };
-    let pushed: Vec<usize> = touching.into_iter().filter(closed).collect();
-    apply(&mut state.u, &asm.dofs.eq, &ws.du, -1.0);
-    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
-    Ok(pushed)
-}
-
-/// Backtracking on `‖R‖` (`state.u` is at `u + Δu` on entry and at `u + sΔu` on return).
-/// The full-step trial assembles the tangent as well when `want_tangent`, the shorter ones
-/// the residual only; returns `(s, reuse)`, `reuse = Some(with tangent)` when the full step
-/// was accepted (the assembler holds that trial's assembly), `None` otherwise.
-fn residual_backtracking(
-    model: &Model,
-    asm: &mut Assembler,
-    state: &mut TrialState,
-    t: f64,
-    ws: &mut Workspace,
+    reference_floor: f64,
+    /// Energy norm of the first correction (0 until made, and again after a verification).
+    e0: f64,
+    /// Energy norm of the last correction.
+    e_last: f64,
+    /// `‖R‖` of the first iterate, of the current one, its reference force and tolerance.
+    r0: f64,
     rn: f64,
-    want_tangent: bool,
-) -> Result<(f64, Option<bool>), NewtonFailure> {
-    let mut step = 1.0;
-    for _ in 0..8 {
-        let full = step == 1.0 && want_tangent;
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
-        asm.free_residual(&mut ws.r);
-        let rt = norm(&ws.r);
-        if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
-            return Ok((step, (step == 1.0).then_some(full)));
-        }
-        // take back half of the current step (no copy of u on the hot path)
-        apply(&mut state.u, &asm.dofs.eq, &ws.du, -0.5 * step);
-        step *= 0.5;
-    }
-    Ok((step, None))
+    fref: f64,
+    tol: f64,
+    /// Points that keep chattering are frozen (until a verification fails once).
+    freezing: bool,
+    verified_once: bool,
+    /// What the assembler holds at the current iterate.
+    assembled: Assembled,
 }
 
-/// Regula falsi (Illinois) on the slope `g(s) = Δu·R(u + sΔu)` until
-/// `|g(s)| ≤ 0.8 |g(0)|` (see [`LineSearch::Slope`]); `s = 1` when the full step already
-/// meets it or still descends. At most 8 assemblies (the full-step one with the tangent when
-/// `want_tangent`, to be reused when `s = 1` is accepted: the second value returned, as in
-/// [`residual_backtracking`]); a non-finite residual
-/// halves the step.
-fn slope_search(
-    model: &Model,
-    asm: &mut Assembler,
-    state: &mut TrialState,
-    t: f64,
-    ws: &mut Workspace,
-    g0: f64,
-    want_tangent: bool,
-) -> Result<(f64, Option<bool>), NewtonFailure> {
-    const ETA: f64 = 0.8;
-    let (mut s_lo, mut g_lo) = (0.0, g0);
-    let mut s_hi = 1.0;
-    let mut g_hi = f64::NAN;
-    let mut s = 1.0;
-    let mut side = 0i8;
-    for _ in 0..8 {
-        let full = s == 1.0 && want_tangent;
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
-        asm.free_residual(&mut ws.r);
-        let g = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
-        let next = if !g.is_finite() {
-            0.5 * s
-        } else {
-            if g.abs() <= ETA * g0.abs() || (s == 1.0 && g < 0.0) {
-                return Ok((s, (s == 1.0).then_some(full)));
-            }
-            // keep the root of g bracketed in [s_lo, s_hi]
-            if g < 0.0 {
-                (s_lo, g_lo) = (s, g);
-                if side == -1 {
-                    g_hi *= 0.5;
-                }
-                side = -1;
-            } else {
-                (s_hi, g_hi) = (s, g);
-                if side == 1 {
-                    g_lo *= 0.5;
-                }
-                side = 1;
-            }
-            if g_hi.is_finite() {
-                s_hi - g_hi * (s_hi - s_lo) / (g_hi - g_lo)
-            } else {
-                0.5 * (s_lo + s_hi)
-            }
-        };
-        let next = next.clamp(1e-3, 1.0);
-        apply(&mut state.u, &asm.dofs.eq, &ws.du, next - s);
-        s = next;
+impl<'a> Iterate<'a> {
+    /// Prescribe the DOFs, size the buffers, assemble the first iterate and hold the points
+    /// that the first correction should see closed or sticking.
+    fn start(
+        model: &'a Model,
+        settings: &'a NewtonSettings,
+        asm: &'a mut Assembler,
+        state: &'a mut TrialState,
+        target: IncrementTarget,
+        ws: &'a mut Workspace,
+    ) -> Result<Self, NewtonFailure> {
+        ws.residuals.clear();
+        ws.held.clear();
+        for p in &model.prescribed {
+            state.u[p.dof] = p.ramp.at(target.t);
+        }
+        let n = asm.dofs.n_free;
+        ws.r.resize(n, 0.0);
+        ws.du.resize(n, 0.0);
+        let t = target.t;
+        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        let retry = target.attempt > 0 && !target.predicted;
+        let pushed_in = touching_pushed_in(model, asm, state, t, ws)?;
+        let held = hold_first_correction(
+            &mut state.contact,
+            model,
+            (target.predicted, retry),
+            &pushed_in,
+            &mut ws.held,
+        );
+        if held > 0 {
+            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        }
+        ws.watch.start(&state.contact);
+        ws.frozen.clear();
+        ws.frozen.resize(state.contact.signature_len(), false);
+        Ok(Iterate {
+            model,
+            settings,
+            asm,
+            state,
+            ws,
+            t,
+            reference_floor: target.reference_floor,
+            e0: 0.0,
+            e_last: f64::INFINITY,
+            r0: 0.0,
+            rn: 0.0,
+            fref: 0.0,
+            tol: 0.0,
+            freezing: settings.freeze_after > 0,
+            verified_once: false,
+            assembled: Assembled::Full,
+        })
     }
-    Ok((s, None))
+
+    fn assemble(&mut self, with_tangent: bool) -> Result<(), NewtonFailure> {
+        let s = &mut *self.state;
+        self.asm
+            .assemble(self.model, &s.u, self.t, &mut s.alphas, &mut s.contact, with_tangent)?;
+        Ok(())
+    }
+
+    /// Residual and tangent at the iterate, unless a line search's full-step trial left them.
+    fn assemble_if_needed(&mut self) -> Result<(), NewtonFailure> {
+        if self.assembled == Assembled::Nothing {
+            self.assemble(true)?;
+            self.assembled = Assembled::Full;
+        }
+        Ok(())
+    }
+
+    /// The residual and energy tests at iterate `k` (a converged iterate with frozen points
+    /// is verified with them released), then the divergence test.
+    fn test_convergence(&mut self, k: usize) -> Result<Option<Converged>, NewtonFailure> {
+        self.asm.free_residual(&mut self.ws.r);
+        self.rn = norm(&self.ws.r);
+        if !self.rn.is_finite() {
+            return Err(NewtonFailure::NonFinite);
+        }
+        self.ws.residuals.push(self.rn);
+        self.fref = reference_force(self.model, self.asm, self.t).max(self.reference_floor);
+        if k == 0 {
+            self.r0 = self.rn;
+        }
+        let floor = self.settings.residual_abs.max(self.asm.roundoff());
+        self.tol = (self.settings.residual_tol * self.fref).max(floor);
+        let res_ok = self.rn <= self.tol;
+        let energy_ok = k > 0 && self.e_last <= self.settings.energy_tol * self.e0.max(f64::MIN_POSITIVE);
+        if res_ok && (energy_ok || k == 0 || self.rn <= floor) {
+            if let Some(converged) = self.verify_frozen(k)? {
+                return Ok(Some(converged));
+            }
+        }
+        if self.rn > self.settings.divergence_factor * self.r0.max(self.fref) {
+            return Err(NewtonFailure::Diverged { residual: self.rn });
+        }
+        Ok(None)
+    }
+
+    /// A converged iterate: done when no point is frozen; otherwise release the frozen
+    /// states (keeping admissible segments) and check them. Points held for the first
+    /// correction of a predicted start (only ever at k = 0) are checked alike but are not
+    /// reported as frozen (they were not chattering). A failed check goes on with every
+    /// point free to choose (no more freezing); a second one fails the attempt.
+    fn verify_frozen(&mut self, k: usize) -> Result<Option<Converged>, NewtonFailure> {
+        let frozen = self.state.contact.frozen_count();
+        let converged = |ws: &Workspace, frozen: usize, fref: f64| Converged {
+            iterations: k,
+            residuals: ws.residuals.clone(),
+            reference: fref,
+            frozen,
+            augmentations: 0,
+        };
+        if frozen == 0 {
+            let chattered = self.ws.frozen.iter().filter(|f| **f).count();
+            return Ok(Some(converged(self.ws, chattered, self.fref)));
+        }
+        let chattering = frozen - self.ws.held.len();
+        self.state.contact.verify_frozen();
+        self.assemble(true)?;
+        self.assembled = Assembled::Full;
+        self.asm.free_residual(&mut self.ws.r);
+        let rv = norm(&self.ws.r);
+        if rv <= self.tol {
+            self.ws.residuals.push(rv);
+            return Ok(Some(converged(self.ws, chattering, self.fref)));
+        }
+        if self.verified_once {
+            return Err(NewtonFailure::FrozenNotVerified { residual: rv });
+        }
+        self.state.contact.unfreeze();
+        self.verified_once = true;
+        self.freezing = false;
+        self.e0 = 0.0;
+        Ok(None)
+    }
+
+    /// Solve for the correction `Δu = −K⁻¹R`, take it, free the held points, and search
+    /// along it. Returns the correction's energy norm `|Δu·R|`, the step taken and whether
+    /// the assembler holds the accepted trial's assembly (see [`residual_backtracking`]).
+    fn correct(&mut self, k: usize) -> Result<(f64, f64, Option<bool>), NewtonFailure> {
+        if self.assembled == Assembled::Residual {
+            // the residual-only trial did not converge after all: its tangent now
+            self.assemble(true)?;
+        }
+        let ws = &mut *self.ws;
+        for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
+            *d = -ri;
+        }
+        self.asm.matrix.solve(&mut ws.du)?;
+        let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
+        if self.e0 == 0.0 {
+            self.e0 = energy;
+        }
+        self.e_last = energy;
+        apply(&mut self.state.u, &self.asm.dofs.eq, &ws.du, 1.0);
+        // the held points are free again once the first correction is computed: the line
+        // search's trials (and so the next iterate) are assembled with their own state;
+        // a correction made with stick held is the elastic predictor, taken in full (the
+        // return mapping at its end finds the slipping points; backtracking on ‖R‖ from it
+        // would undo the motion the stick tangent predicted)
+        let elastic_predictor = self.state.contact.stick_held_count() > 0;
+        for flat in ws.held.drain(..) {
+            self.state.contact.release(flat);
+        }
+        let (step, reuse) = if !self.settings.line_search || elastic_predictor {
+            (1.0, None)
+        } else {
+            self.line_search(k)?
+        };
+        Ok((energy, step, reuse))
+    }
+
+    /// Will the full step converge? Then its trial needs no tangent (one fewer per
+    /// increment): the energy test is already met by this correction and the residual,
+    /// reduced at the rate of the last iteration (an overestimate where convergence is
+    /// quadratic), falls below the tolerance. A wrong guess costs one more assembly.
+    fn likely_converged(&self, k: usize) -> bool {
+        let r = &self.ws.residuals;
+        let r_prev = r.len().checked_sub(2).map(|i| r[i]);
+        k > 0
+            && self.e_last <= self.settings.energy_tol * self.e0.max(f64::MIN_POSITIVE)
+            && r_prev.is_some_and(|rp| rp > 0.0 && self.rn * (self.rn / rp) <= self.tol)
+    }
+
+    /// The slope search where the iterate has an energy (no frictional slip) and the
+    /// correction descends (`g(0) = Δu·R(u) < 0`); backtracking on `‖R‖` elsewhere.
+    fn line_search(&mut self, k: usize) -> Result<(f64, Option<bool>), NewtonFailure> {
+        let want_tangent = !self.likely_converged(k);
+        let g0 = self.ws.du.iter().zip(&self.ws.r).map(|(a, b)| a * b).sum::<f64>();
+        let slope_ok = self.settings.line_search_rule == LineSearch::Slope
+            && g0 < 0.0
+            && self.state.contact.conservative(self.model);
+        let (model, t) = (self.model, self.t);
+        if slope_ok {
+            slope_search(model, self.asm, self.state, t, self.ws, g0, want_tangent)
+        } else {
+            residual_backtracking(model, self.asm, self.state, t, self.ws, self.rn, want_tangent)
+        }
+    }
+
+    /// Count the active-set changes of the new iterate, freeze points that keep
+    /// chattering, and note what the assembler now holds. Returns the changes.
+    fn watch_active_set(&mut self, k: usize, reuse: Option<bool>) -> usize {
+        let ws = &mut *self.ws;
+        let changes = ws.watch.observe(&self.state.contact, k + 1);
+        // frozen decisions change what the next assembly computes
+        let after = self.settings.freeze_after;
+        let froze = self.freezing
+            && ws
+                .watch
+                .freeze_chattering(&mut self.state.contact, after, &mut ws.frozen)
+                > 0;
+        self.assembled = match (reuse, froze) {
+            (Some(true), false) => Assembled::Full,
+            (Some(false), false) => Assembled::Residual,
+            _ => Assembled::Nothing,
+        };
+        changes
+    }
+
+    /// Why the iteration stopped without converging: an active-set cycle, or too many
+    /// iterations.
+    fn failure(&self) -> NewtonFailure {
+        let iterations = self.ws.residuals.len() - 1;
+        if self.ws.watch.cycling(3) {
+            let points = self.ws.watch.report(&self.state.contact, self.model, usize::MAX).len();
+            return NewtonFailure::ActiveSetCycle { iterations, points };
+        }
+        NewtonFailure::MaxIterations { iterations }
+    }
 }
 
 /// What the assembler holds at the current iterate.
@@ -422,7 +426,7 @@ enum Assembled {
     Full,
 }
 
-fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {
+pub(super) fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {
     for (d, e) in eq.iter().enumerate() {
         if let Some(e) = e {
             u[d] += s * du[*e];
@@ -430,7 +434,7 @@ fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {
     }
 }
 
-fn norm(v: &[f64]) -> f64 {
+pub(super) fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 

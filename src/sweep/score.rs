@@ -261,10 +261,12 @@ pub fn score(
         let recs: Vec<&RunRecord> = records.iter().filter(|r| r.study == s.name).collect();
         let (reference, label): (Option<Curve>, String) = match &s.reference {
             Reference::None => (None, String::new()),
-            Reference::Finest { filter, study } => match finest(&study_runs(records, study.as_ref().unwrap_or(&s.name)), filter) {
-                Some(r) => (Some(curve(r)), r.id.clone()),
-                None => (None, String::new()),
-            },
+            Reference::Finest { filter, study } => {
+                match finest(&study_runs(records, study.as_ref().unwrap_or(&s.name)), filter) {
+                    Some(r) => (Some(curve(r)), r.id.clone()),
+                    None => (None, String::new()),
+                }
+            }
             Reference::Csv { path, x, y } => (Some(read_csv_curve(path, x, y)?), format!("csv:{path}")),
             Reference::Hertz { .. } => (None, "hertz".into()),
             Reference::Coulomb { .. } => (None, "coulomb".into()),

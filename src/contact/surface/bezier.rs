@@ -141,7 +141,10 @@ mod tests {
         };
         for xi in [-1.0, -0.4, 0.3, 1.0] {
             let (p, _) = straight.eval(xi);
-            assert!(p[1].abs() < 1e-15 && (-0.125 - 1e-15..=1.0 + 1e-15).contains(&p[0]), "{xi}: {p:?}");
+            assert!(
+                p[1].abs() < 1e-15 && (-0.125 - 1e-15..=1.0 + 1e-15).contains(&p[0]),
+                "{xi}: {p:?}"
+            );
         }
         // a free end ends at the end node, straight to the midpoint
         let (end, t_end) = straight.eval(1.0);

@@ -61,7 +61,11 @@ fn physical_trial(p: &PointProblem) -> f64 {
 
 #[test]
 fn continuous_path_length_and_spatial_give_the_exact_trial_across_the_boundary() {
-    for s in [TransferKind::Continuous, TransferKind::PathLength, TransferKind::Spatial] {
+    for s in [
+        TransferKind::Continuous,
+        TransferKind::PathLength,
+        TransferKind::Spatial,
+    ] {
         let t = physical_trial(&problem(s, 0.2, false));
         assert!((t - (TAU - 0.3 * EPS_T)).abs() < 1e-9 * EPS_T, "{s:?}: {t}");
     }
@@ -118,7 +122,11 @@ fn spatial_does_not_see_a_master_sliding_under_a_fixed_slave() {
         // the slave stays at x = −0.1, now at ξ = 0.2 + 0.6 − 1 … of the moved A
         physical_trial(&p)
     };
-    for s in [TransferKind::Straightforward, TransferKind::Continuous, TransferKind::PathLength] {
+    for s in [
+        TransferKind::Straightforward,
+        TransferKind::Continuous,
+        TransferKind::PathLength,
+    ] {
         let t = moved(s);
         assert!((t - (TAU - 0.3 * EPS_T)).abs() < 1e-9 * EPS_T, "{s:?}: {t}");
     }

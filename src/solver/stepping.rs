@@ -1,0 +1,457 @@
+//! The load stepping over the pseudo-time, step by step: converge an increment (attempts
+//! from a predicted or converged start, cut-backs on failure), commit it and hand its
+//! records to the observer, grow the step back toward the nominal one.
+
+use super::augmented::solve_augmented;
+use super::newton::{Converged, IncrementTarget, NewtonFailure, Workspace};
+use super::run::{RunSummary, SolveError, UnstableSummary};
+use super::state::TrialState;
+use crate::assembly::Assembler;
+use crate::contact::system::Config;
+use crate::model::Model;
+use crate::record::{
+    ChangingPoint, ContactPointRecord, CrossingRecord, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer,
+    ObserverError, StepView,
+};
+use crate::settings::{Predictor, SolverSettings, TangentCheckWhen};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Check the elements at a converged increment; log a warning when the unstable set changes
+/// in size (the first time too), and keep the run's account.
+fn check_elements(
+    model: &Model,
+    asm: &Assembler,
+    state: &TrialState,
+    (increment, t): (usize, f64),
+    last_count: &mut usize,
+    summary: &mut RunSummary,
+    obs: &mut dyn Observer,
+) -> Result<(), ObserverError> {
+    let Ok(unstable) = super::element_check::unstable_elements(model, asm, &state.u, &state.alphas) else {
+        return Ok(());
+    };
+    if unstable.len() != *last_count && !unstable.is_empty() {
+        let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
+        log(
+            obs,
+            LogLevel::Warning,
+            increment,
+            t,
+            format!(
+                "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; the element kind `q4-eas-safe` (the default) does not hourglass",
+                unstable.len(),
+                names.join(", "),
+                if unstable.len() > 5 { ", …" } else { "" }
+            ),
+        )?;
+    }
+    *last_count = unstable.len();
+    if let Some(worst) = unstable.first() {
+        let s = summary.unstable_elements.get_or_insert(UnstableSummary {
+            first_increment: increment,
+            most: 0,
+            worst_element: worst.element,
+            worst_ratio: worst.ratio,
+        });
+        s.most = s.most.max(unstable.len());
+        if worst.ratio < s.worst_ratio {
+            (s.worst_element, s.worst_ratio) = (worst.element, worst.ratio);
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn log(
+    obs: &mut dyn Observer,
+    level: LogLevel,
+    increment: usize,
+    t: f64,
+    message: String,
+) -> Result<(), ObserverError> {
+    obs.log(&LogRecord {
+        level,
+        increment,
+        t,
+        message,
+    })
+}
+
+/// The finite-difference check of the tangent at a failing iterate, as one log line.
+fn diagnose_tangent(
+    model: &Model,
+    asm: &mut Assembler,
+    trial: &TrialState,
+    t: f64,
+    points: &[ChangingPoint],
+) -> String {
+    let nodes = super::tangent_check::nodes_of_points(model, &trial.contact, points);
+    match super::tangent_check::check_tangent(model, asm, trial, t, &nodes) {
+        Ok(c) => format!("at the last iterate: {}", c.summary()),
+        Err(e) => format!("at the last iterate: tangent check not possible ({e})"),
+    }
+}
+
+/// Drive the load stepping: each increment is converged (cut back on failure), committed
+/// and reported, and the step grows back toward the nominal one.
+pub(super) fn drive(
+    model: &Model,
+    settings: &SolverSettings,
+    obs: &mut dyn Observer,
+    stop: &AtomicBool,
+    started: Instant,
+) -> Result<RunSummary, SolveError> {
+    let mut s = Stepping::new(model, settings);
+    let end = settings.stepping.end;
+    while s.t < end * (1.0 - 1e-12) {
+        s.increment += 1;
+        let t_inc = Instant::now();
+        // entries contact added to the tangent while a point crossed segments go again
+        // when no longer written (they widen a banded factorisation)
+        s.asm.shrink_unused_contact_pattern(model);
+        let done = s.converge_increment(obs, stop)?;
+        s.commit(done, t_inc, obs)?;
+        s.grow_step();
+    }
+    Ok(s.finish(started))
+}
+
+/// An increment Newton converged, before it is committed.
+struct ConvergedIncrement {
+    state: TrialState,
+    conv: Converged,
+    t_new: f64,
+    cutbacks: usize,
+}
+
+/// What the load stepping carries from one increment to the next.
+struct Stepping<'a> {
+    model: &'a Model,
+    settings: &'a SolverSettings,
+    asm: Assembler,
+    ws: Workspace,
+    /// The last converged state.
+    committed: TrialState,
+    labels: crate::record::ContactLabels,
+    summary: RunSummary,
+    increment: usize,
+    t: f64,
+    dt: f64,
+    nominal: f64,
+    /// Increments converged since the last cut-back or growth.
+    streak: usize,
+    /// The largest reference force of the run so far.
+    fref: f64,
+    /// The last converged increment `(uₙ − uₙ₋₁, Δtₙ)`, for the secant predictor.
+    last_du: Vec<f64>,
+    last_dt: Option<f64>,
+    /// Time spent handing records to the observer.
+    recording: std::time::Duration,
+    /// Unstable elements at the last converged increment.
+    unstable_count: usize,
+}
+
+impl<'a> Stepping<'a> {
+    fn new(model: &'a Model, settings: &'a SolverSettings) -> Self {
+        let st = &settings.stepping;
+        let nominal = st.end / st.increments.max(1) as f64;
+        let mut asm = Assembler::new(model);
+        asm.matrix.set_solver(settings.newton.linear_solver);
+        Stepping {
+            model,
+            settings,
+            asm,
+            ws: Workspace::default(),
+            committed: TrialState::new(model),
+            labels: crate::record::ContactLabels::new(model),
+            summary: RunSummary::default(),
+            increment: 0,
+            t: 0.0,
+            dt: nominal,
+            nominal,
+            streak: 0,
+            fref: 0.0,
+            last_du: vec![0.0; model.dof_count()],
+            last_dt: None,
+            recording: std::time::Duration::ZERO,
+            unstable_count: 0,
+        }
+    }
+
+    /// The end time of the next attempt (the end itself when it is within 1e-6 Δt).
+    fn next_time(&self) -> f64 {
+        let end = self.settings.stepping.end;
+        let t_new = (self.t + self.dt).min(end);
+        if end - t_new < 1e-6 * self.dt {
+            end
+        } else {
+            t_new
+        }
+    }
+
+    /// The start of an attempt: the converged state, extrapolated along the last increment
+    /// when `predict` (secant predictor).
+    fn trial_start(&self, t_new: f64, predict: bool) -> TrialState {
+        let mut trial = self.committed.clone();
+        trial.contact.reset_current();
+        if let (true, Some(dt_last)) = (predict, self.last_dt) {
+            let ratio = (t_new - self.t) / dt_last;
+            for (d, e) in self.asm.dofs.eq.iter().enumerate() {
+                if e.is_some() {
+                    trial.u[d] += ratio * self.last_du[d];
+                }
+            }
+        }
+        trial
+    }
+
+    /// Attempts at the increment until one converges: a failed predicted start is retried
+    /// from the converged state, any other failure cuts the step in half (or ends the run).
+    fn converge_increment(
+        &mut self,
+        obs: &mut dyn Observer,
+        stop: &AtomicBool,
+    ) -> Result<ConvergedIncrement, SolveError> {
+        let st = &self.settings.stepping;
+        let mut predict = st.predictor == Predictor::Secant && self.last_dt.is_some();
+        let (mut attempt, mut cutbacks) = (0, 0);
+        loop {
+            let t_new = self.next_time();
+            let mut trial = self.trial_start(t_new, predict);
+            let target = IncrementTarget {
+                t: t_new,
+                reference_floor: self.fref,
+                increment: self.increment,
+                attempt,
+                predicted: predict,
+            };
+            match self.attempt(&mut trial, target, obs, stop)? {
+                Ok(conv) => {
+                    return Ok(ConvergedIncrement {
+                        state: trial,
+                        conv,
+                        t_new,
+                        cutbacks,
+                    })
+                }
+                Err(f) if predict => {
+                    let message = format!(
+                        "increment {} at t = {t_new:.6}: {f} from the predicted start; retrying from the last converged state",
+                        self.increment
+                    );
+                    log(obs, LogLevel::Info, self.increment, t_new, message)?;
+                    predict = false;
+                }
+                Err(f) => {
+                    self.cut_back(f, &trial, t_new, cutbacks, obs)?;
+                    cutbacks += 1;
+                }
+            }
+            attempt += 1;
+        }
+    }
+
+    /// One attempt (Newton, with the multiplier updates of augmented pairs), its iterations
+    /// handed to `obs`; a recording failure or an interrupt ends the run.
+    fn attempt(
+        &mut self,
+        trial: &mut TrialState,
+        target: IncrementTarget,
+        obs: &mut dyn Observer,
+        stop: &AtomicBool,
+    ) -> Result<Result<Converged, NewtonFailure>, SolveError> {
+        let mut obs_err = None;
+        let mut interrupted = false;
+        let recording = &mut self.recording;
+        let mut hand_over = |rec| {
+            let handed = Instant::now();
+            if let Err(e) = obs.iteration(&rec) {
+                obs_err = Some(e);
+            }
+            *recording += handed.elapsed();
+            interrupted = stop.load(Ordering::Relaxed);
+            obs_err.is_none() && !interrupted
+        };
+        let newton = &self.settings.newton;
+        let res = solve_augmented(
+            self.model,
+            newton,
+            &mut self.asm,
+            trial,
+            target,
+            &mut hand_over,
+            &mut self.ws,
+        );
+        if let Some(e) = obs_err {
+            return Err(e.into());
+        }
+        if interrupted || stop.load(Ordering::Relaxed) {
+            return Err(SolveError::Interrupted {
+                increment: self.increment,
+                t: self.t,
+            });
+        }
+        Ok(res)
+    }
+
+    /// A failed attempt: diagnose the tangent when asked to, then halve the step — or fail
+    /// the run when the step may not be cut further (never below nominal / 2^max_cutbacks,
+    /// however it got there).
+    fn cut_back(
+        &mut self,
+        f: NewtonFailure,
+        trial: &TrialState,
+        t_new: f64,
+        cutbacks: usize,
+        obs: &mut dyn Observer,
+    ) -> Result<(), SolveError> {
+        let st = &self.settings.stepping;
+        let (model, increment, dt) = (self.model, self.increment, self.dt);
+        let last = cutbacks >= st.max_cutbacks || dt * 0.5 < self.nominal * 0.5f64.powi(st.max_cutbacks as i32);
+        let check = match self.settings.newton.check_tangent {
+            TangentCheckWhen::Off => false,
+            TangentCheckWhen::OnFailure => last,
+            TangentCheckWhen::EveryFailedAttempt => true,
+        };
+        if check {
+            let points = self.ws.watch.report(&trial.contact, model, 8);
+            let message = diagnose_tangent(model, &mut self.asm, trial, t_new, &points);
+            log(obs, LogLevel::Warning, increment, t_new, message)?;
+        }
+        if last {
+            return Err(SolveError::StepFailed {
+                increment,
+                t: t_new,
+                dt,
+                cutbacks,
+                reason: f.to_string(),
+                residuals: self.ws.residuals.clone(),
+                kind: f.kind(),
+                points: self.ws.watch.report(&trial.contact, model, 8),
+            });
+        }
+        let message = format!("increment {increment} at t = {t_new:.6}: {f}; cutting the step {dt:.3e} in half");
+        log(obs, LogLevel::Warning, increment, t_new, message)?;
+        self.dt *= 0.5;
+        self.summary.cutbacks += 1;
+        self.streak = 0;
+        Ok(())
+    }
+
+    /// Make the converged increment the committed state: records of the converged iterate
+    /// (compared with the previous increment), the contact history committed, the records
+    /// handed to `obs`, the elements checked.
+    fn commit(&mut self, done: ConvergedIncrement, t_inc: Instant, obs: &mut dyn Observer) -> Result<(), SolveError> {
+        for ((d, a), b) in self.last_du.iter_mut().zip(&done.state.u).zip(&self.committed.u) {
+            *d = a - b;
+        }
+        self.last_dt = Some(done.t_new - self.t);
+        self.committed = done.state;
+        let t_prev = self.t;
+        self.t = done.t_new;
+        self.fref = self.fref.max(done.conv.reference);
+        self.summary.newton_iterations += done.conv.iterations;
+        self.summary.augmentations += done.conv.augmentations;
+        let handed = Instant::now();
+        let (points, monitors, crossings, commit_time) = self.commit_contact();
+        self.summary.crossings += crossings.len();
+        let rec = IncrementRecord {
+            increment: self.increment,
+            t: self.t,
+            dt: self.t - t_prev,
+            iterations: done.conv.iterations,
+            cutbacks: done.cutbacks,
+            converged: true,
+            wall_time_s: t_inc.elapsed().as_secs_f64(),
+            residuals: done.conv.residuals,
+            monitor: monitors.first().cloned(),
+            monitors,
+            reaction_total: self.reaction_total(),
+        };
+        self.summary.monitor = rec.monitor.clone();
+        self.summary.monitors = rec.monitors.clone();
+        let view = StepView {
+            model: self.model,
+            u: &self.committed.u,
+            contact: &points,
+            crossings: &crossings,
+        };
+        obs.increment(&rec, &view)?;
+        self.recording += handed.elapsed().saturating_sub(commit_time);
+        let at = (self.increment, self.t);
+        check_elements(
+            self.model,
+            &self.asm,
+            &self.committed,
+            at,
+            &mut self.unstable_count,
+            &mut self.summary,
+            obs,
+        )?;
+        self.asm.update_hourglass_holds(self.model, &self.committed.u);
+        self.summary.increments = self.increment;
+        Ok(())
+    }
+
+    /// The contact records and monitors of the converged iterate (they compare it with the
+    /// previous increment, so they come first), then the contact history committed and its
+    /// crossings; the last value is the time the commit took (physics, not recording).
+    #[allow(clippy::type_complexity)]
+    fn commit_contact(
+        &mut self,
+    ) -> (
+        Vec<ContactPointRecord>,
+        Vec<MonitorRecord>,
+        Vec<CrossingRecord>,
+        std::time::Duration,
+    ) {
+        let cfg = Config {
+            model: self.model,
+            u: &self.committed.u,
+            t: self.t,
+        };
+        let snapshots = self.committed.contact.snapshots(&cfg);
+        let points: Vec<ContactPointRecord> = (snapshots.iter())
+            .map(|p| ContactPointRecord::from_snapshot(&self.labels, p))
+            .collect();
+        let monitors = super::monitor::records(self.model, &self.asm, &self.committed.u, self.t, &snapshots);
+        let committing = Instant::now();
+        let events = self.committed.contact.commit(&cfg);
+        let commit_time = committing.elapsed();
+        let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
+        (points, monitors, crossings, commit_time)
+    }
+
+    /// Sum of the reactions at the prescribed DOFs, per direction.
+    fn reaction_total(&self) -> [f64; 2] {
+        let mut total = [0.0; 2];
+        for &d in &self.asm.dofs.prescribed {
+            total[d % 2] += self.asm.r_full[d];
+        }
+        total
+    }
+
+    /// After `grow_after` converged increments in a row, the step grows toward the nominal.
+    fn grow_step(&mut self) {
+        let st = &self.settings.stepping;
+        self.streak += 1;
+        if self.streak >= st.grow_after && self.dt < self.nominal {
+            self.dt = (self.dt * st.growth).min(self.nominal);
+            self.streak = 0;
+        }
+    }
+
+    /// The run's figures.
+    fn finish(self, started: Instant) -> RunSummary {
+        let mut summary = self.summary;
+        let matrix = &self.asm.matrix;
+        summary.t = self.t;
+        summary.wall_time_s = started.elapsed().as_secs_f64();
+        summary.symbolic_factorizations = matrix.symbolic_factorizations;
+        summary.timings = self.asm.timings();
+        summary.iterative = matrix.iterative_stats();
+        summary.ldlt = matrix.ldlt_stats();
+        summary.recording_s = self.recording.as_secs_f64();
+        summary
+    }
+}
