@@ -159,7 +159,7 @@ fn smoothed_faces_reach_full_insertion_with_smaller_crossing_spikes() {
 /// Why the Hermite face does not meet the bound: the force's oscillation over
 /// v ∈ [4, 5.5] is the tilt of the face's normal at C (correlation of the two cubic-fit
 /// residuals below −0.99, the normal force itself smooth), and that tilt grows under
-/// refinement (measured 0.91e-3, 1.15e-3, 2.62e-3, 5.03e-3 rad on 24×1 … 240×8).
+/// refinement (measured 0.91e-3, 1.13e-3, 2.68e-3, 5.14e-3 rad on 24×1 … 240×8).
 #[test]
 #[cfg_attr(debug_assertions, ignore = "release tier")]
 fn crossing_spikes_are_the_tilt_of_the_normal_at_the_corner() {
