@@ -57,7 +57,7 @@ fn strip_channel_240x8_first_touch_cycles_with_residual_backtracking_and_converg
     match &residual.outcome {
         Some(Outcome::Failed { increment, kind, .. }) => {
             assert_eq!(*increment, 1);
-            assert_eq!(kind.name(), "active-set-cycle");
+            assert_eq!(kind.as_str(), "active-set-cycle");
         }
         other => panic!("residual rule: expected the active-set cycle, got {other:?}"),
     }

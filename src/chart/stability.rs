@@ -76,8 +76,9 @@ fn polygon(n: usize, r: f64, phase: f64) -> Vec<Px> {
 }
 
 /// Shape of a marker, in pixels around its centre: (outline, filled). `None` = passed.
-/// Filled circle passed, × no convergence, ▲ cycling, ■ diverged, □ inverted element,
-/// △ singular, ○ lost contact, ◆ wrong answer, + bad input / recording.
+/// Filled circle passed, × no convergence, ▲ active-set cycle, ■ diverged, small □ non-finite,
+/// □ inverted element, △ linear solver (singular), ○ lost contact, ◆ wrong answer, + bad input /
+/// recording.
 pub fn marker_shape(kind: Option<FailureKind>, s: f64) -> (Vec<Vec<Px>>, bool) {
     let up = -std::f64::consts::FRAC_PI_2;
     let q = std::f64::consts::FRAC_PI_4;
@@ -89,10 +90,11 @@ pub fn marker_shape(kind: Option<FailureKind>, s: f64) -> (Vec<Vec<Px>>, bool) {
     match kind {
         None => (vec![polygon(16, s, 0.0)], true),
         Some(FailureKind::NoConvergence) => (vec![vec![(-si, -si), (si, si)], vec![(-si, si), (si, -si)]], false),
-        Some(FailureKind::Cycling) => (vec![polygon(3, s * 1.2, up)], true),
+        Some(FailureKind::ActiveSetCycle) => (vec![polygon(3, s * 1.2, up)], true),
         Some(FailureKind::Diverged) => (vec![polygon(4, s * 1.3, q)], true),
+        Some(FailureKind::NonFinite) => (vec![closed(polygon(4, s * 0.9, q))], false),
         Some(FailureKind::InvertedElement) => (vec![closed(polygon(4, s * 1.3, q))], false),
-        Some(FailureKind::Singular) => (vec![closed(polygon(3, s * 1.2, up))], false),
+        Some(FailureKind::LinearSolver) => (vec![closed(polygon(3, s * 1.2, up))], false),
         Some(FailureKind::LostContact) => (vec![closed(polygon(16, s, 0.0))], false),
         Some(FailureKind::WrongAnswer) => (vec![polygon(4, s * 1.3, 0.0)], true),
         Some(FailureKind::BadInput) | Some(FailureKind::Recording) => {

@@ -11,9 +11,9 @@ use contrail::record::jsonl::JsonlSink;
 use contrail::record::mcap_sink::{ChunkCompression, Iterations, McapOptions, McapSink, SceneEvery};
 use contrail::record::rerun_sink::{self, RerunSink};
 use contrail::record::vtu_sink::VtuSink;
-use contrail::record::{Fanout, Observer};
-use contrail::solver::{run as solve, SolveError};
-use contrail::study::{outcome_of, Collector, ProgressLine, ProgressSink};
+use contrail::record::Observer;
+use contrail::solver::{RunSummary, SolveError};
+use contrail::study::{run_loaded, ProgressLine, ProgressSink};
 use std::io::{BufWriter, IsTerminal};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -152,133 +152,35 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     let model = &problem.model;
     let info = contrail::run_info(&src, &a.sets, &problem);
     let stop = super::signal::stop_flag();
-    let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
-    for path in &a.out {
-        sinks.push(sink(path, &a)?);
-    }
-    let targets = a.rerun.targets();
-    if targets.any() {
-        let stream = rerun_sink::open(&targets, &model.name).map_err(|e| BadInput(e.to_string()))?;
-        sinks.push(Box::new(RerunSink::new(stream, "rerun")));
-    }
-    if !a.quiet && std::io::stderr().is_terminal() {
-        sinks.push(Box::new(Progress::new(problem.settings.stepping.end)));
-    }
+    let mut sinks = sinks(&a, &problem)?;
     let mut tracker = Tracker::default();
     let mut progress = a.progress.as_deref().map(progress_sink).transpose()?;
-    let mut collector = Collector::default();
-    let started = std::time::Instant::now();
-    let result = {
-        let mut fan = Fanout {
-            sinks: sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect(),
-        };
-        fan.sinks.push(&mut tracker);
+    let finished = {
+        let mut observers: Vec<&mut dyn Observer> = sinks.iter_mut().map(|s| s.as_mut() as &mut dyn Observer).collect();
+        observers.push(&mut tracker);
         if let Some(p) = progress.as_mut() {
-            fan.sinks.push(p);
-            fan.sinks.push(&mut collector);
+            observers.push(p);
         }
-        solve(&problem, &info, &mut fan, &stop)
+        run_loaded(&problem, &info, &mut observers, &stop)
     };
     drop(sinks);
+    let result = finished.result;
     if let Some(p) = progress.as_mut() {
         let culprit = match &result {
             Err(SolveError::StepFailed { points, .. }) => points.clone(),
             _ => Vec::new(),
         };
-        let outcome = Box::new(outcome_of(&result, collector, &problem, &info, started));
+        let outcome = Box::new(finished.outcome);
         p.write(&ProgressLine::End { outcome, culprit })?;
     }
     let mcap = a.out.iter().find(|p| p.extension().is_some_and(|e| e == "mcap"));
     let mut o = String::new();
-    let row = |o: &mut String, k: &str, v: String| o.push_str(&format!("{k:<12} {v}\n"));
     row(&mut o, "scene", format!("{} ({})", model.name, src.origin));
     row(&mut o, "transfer", info.transfer.join(", "));
-    match &result {
-        Ok(_) => row(&mut o, "ended", "completed".into()),
-        Err(SolveError::StepFailed {
-            increment,
-            t,
-            dt,
-            cutbacks,
-            reason,
-            residuals,
-            kind,
-            points,
-        }) => {
-            row(&mut o, "ended", "FAILED".into());
-            row(
-                &mut o,
-                "stopped",
-                format!(
-                    "increment {increment} at t = {} (step {}, after {}): {reason}",
-                    plain(*t),
-                    plain(*dt),
-                    contrail::format::count(*cutbacks, "cut-back", "cut-backs")
-                ),
-            );
-            row(&mut o, "residuals", compact_list(residuals, 8));
-            row(&mut o, "kind", kind.name().into());
-            for p in points.iter().take(4) {
-                let states: Vec<String> = p
-                    .history
-                    .iter()
-                    .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
-                    .collect();
-                row(
-                    &mut o,
-                    "changing",
-                    format!(
-                        "{} of `{}`: {} changes from iteration {}, ξ = {}: {}",
-                        p.slave_label,
-                        p.pair_name,
-                        p.changes,
-                        p.first_change,
-                        plain(p.xi),
-                        states.join(" → ")
-                    ),
-                );
-            }
-            tracker.cutbacks += cutbacks;
-        }
-        Err(SolveError::Interrupted { increment, .. }) => {
-            row(&mut o, "ended", format!("interrupted during increment {increment}"))
-        }
-        Err(SolveError::Observer(e)) => row(&mut o, "ended", format!("recording failed: {e}")),
-    }
+    ended_rows(&mut o, &result, &mut tracker);
     progress_lines(&mut o, &tracker);
     if let Ok(s) = &result {
-        row(
-            &mut o,
-            "wall time",
-            format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
-        );
-        row(&mut o, "time spent", time_split(s));
-        if s.augmentations > 0 {
-            row(
-                &mut o,
-                "augmented",
-                format!(
-                    "{} multiplier updates (augmented Lagrangian: each one more solve of its increment)",
-                    s.augmentations
-                ),
-            );
-        }
-        if let Some(line) = iterative_line(&s.iterative) {
-            row(&mut o, "linear solver", line);
-        }
-        if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
-            row(&mut o, "linear solver", line);
-        }
-        if let Some(u) = &s.unstable_elements {
-            row(
-                &mut o,
-                "WARNING",
-                format!(
-                    "elements lost stability from increment {} on (up to {} at once; worst: element {}, λ_min/λ_max = {:.1e}): an hourglass pattern, the answer may be wrong; see `/log`",
-                    u.first_increment, u.most, u.worst_element, u.worst_ratio
-                ),
-            );
-        }
+        summary_rows(&mut o, s);
     }
     for p in &a.out {
         row(&mut o, "written", p.display().to_string());
@@ -294,6 +196,109 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
         row(&mut o, "inspect", inspect_hint(mcap.map(PathBuf::as_path), &model.name));
     }
     out!("{o}")?;
+    exit(result, &format!("{} ({})", model.name, src.origin), mcap)
+}
+
+/// The sinks the arguments ask for: `--out` files, rerun, the terminal's progress bar.
+fn sinks(a: &RunArgs, problem: &contrail::problem::Problem) -> anyhow::Result<Vec<Box<dyn Observer>>> {
+    let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
+    for path in &a.out {
+        sinks.push(sink(path, a)?);
+    }
+    let targets = a.rerun.targets();
+    if targets.any() {
+        let stream = rerun_sink::open(&targets, &problem.model.name).map_err(|e| BadInput(e.to_string()))?;
+        sinks.push(Box::new(RerunSink::new(stream, "rerun")));
+    }
+    if !a.quiet && std::io::stderr().is_terminal() {
+        sinks.push(Box::new(Progress::new(problem.settings.stepping.end)));
+    }
+    Ok(sinks)
+}
+
+/// One `key  value` line of the summary.
+fn row(o: &mut String, k: &str, v: String) {
+    o.push_str(&format!("{k:<12} {v}\n"));
+}
+
+/// How the run ended: completed, or where and why it stopped.
+fn ended_rows(o: &mut String, result: &Result<RunSummary, SolveError>, tracker: &mut Tracker) {
+    match result {
+        Ok(_) => row(o, "ended", "completed".into()),
+        Err(SolveError::StepFailed {
+            increment,
+            t,
+            dt,
+            cutbacks,
+            reason,
+            residuals,
+            kind,
+            points,
+        }) => {
+            row(o, "ended", "FAILED".into());
+            row(
+                o,
+                "stopped",
+                format!(
+                    "increment {increment} at t = {} (step {}, after {}): {reason}",
+                    plain(*t),
+                    plain(*dt),
+                    contrail::format::count(*cutbacks, "cut-back", "cut-backs")
+                ),
+            );
+            row(o, "residuals", compact_list(residuals, 8));
+            row(o, "kind", kind.as_str().into());
+            for p in points.iter().take(4) {
+                row(o, "changing", p.describe());
+            }
+            tracker.cutbacks += cutbacks;
+        }
+        Err(SolveError::Interrupted { increment, .. }) => {
+            row(o, "ended", format!("interrupted during increment {increment}"))
+        }
+        Err(SolveError::Observer(e)) => row(o, "ended", format!("recording failed: {e}")),
+    }
+}
+
+/// The run's figures: wall time and where it went, multiplier updates, the linear solver,
+/// elements that lost stability.
+fn summary_rows(o: &mut String, s: &RunSummary) {
+    row(
+        o,
+        "wall time",
+        format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
+    );
+    row(o, "time spent", time_split(s));
+    if s.augmentations > 0 {
+        row(
+            o,
+            "augmented",
+            format!(
+                "{} multiplier updates (augmented Lagrangian: each one more solve of its increment)",
+                s.augmentations
+            ),
+        );
+    }
+    if let Some(line) = iterative_line(&s.iterative) {
+        row(o, "linear solver", line);
+    }
+    if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
+        row(o, "linear solver", line);
+    }
+    if let Some(u) = &s.unstable_elements {
+        row(
+                o,
+                "WARNING",
+                format!(
+                    "elements lost stability from increment {} on (up to {} at once; worst: element {}, λ_min/λ_max = {:.1e}): an hourglass pattern, the answer may be wrong; see `/log`",
+                    u.first_increment, u.most, u.worst_element, u.worst_ratio
+                ),
+            );
+    }
+}
+
+/// The exit: success, or the failure with where its record is.
+fn exit(result: Result<RunSummary, SolveError>, scene: &str, mcap: Option<&PathBuf>) -> anyhow::Result<ExitCode> {
     match result {
         Ok(_) => Ok(ExitCode::SUCCESS),
         Err(e) => {
@@ -304,7 +309,7 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
                 } => format!("increment {increment} failed at t = {}: {reason}", plain(*t)),
                 other => other.to_string(),
             };
-            let mut message = format!("{} ({}): {what}", model.name, src.origin);
+            let mut message = format!("{scene}: {what}");
             if let Some(p) = mcap.filter(|p| p.exists()) {
                 message.push_str(&format!("\n  the record up to this point is in {}", p.display()));
             }

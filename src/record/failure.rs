@@ -6,8 +6,13 @@ use crate::contact::law::ContactState;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-/// What made an increment fail (after every allowed cut-back).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+/// Why a run gave no usable answer: the one failure type of the solver, the recordings, the
+/// sweeps and the service. The solver's kinds say what made an increment fail after every
+/// allowed cut-back; a completed run may still be flagged by a sweep's checks
+/// ([`FailureKind::LostContact`], [`FailureKind::WrongAnswer`]); a run that never started is
+/// [`FailureKind::BadInput`]. Names are kebab-case (`active-set-cycle`); the names older
+/// sweep indexes used (`cycling`, `singular`) still read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum FailureKind {
     /// Newton reached its iteration limit without an active-set change in its last iterations.
@@ -15,21 +20,45 @@ pub enum FailureKind {
     NoConvergence,
     /// Newton reached its iteration limit while contact points kept changing state or
     /// segment, or converged only with frozen points whose frozen state did not verify.
+    #[serde(alias = "cycling")]
     ActiveSetCycle,
     /// The residual grew beyond the divergence limit.
     Diverged,
     /// The residual became NaN or infinite.
     NonFinite,
-    /// An element could not be evaluated (inverted element, `det F ≤ 0`).
+    /// An element could not be evaluated (inverted element, `det F ≤ 0`, or its enhanced
+    /// strains did not converge).
     InvertedElement,
-    /// The sparse LU failed (singular tangent).
+    /// The tangent could not be factorised (singular system).
+    #[serde(alias = "singular")]
     LinearSolver,
-    /// An observer could not record.
+    /// The run completed but a contact pair that must stay closed opened (a sweep's check).
+    LostContact,
+    /// The run completed but an error metric exceeds the plan's bound (a sweep's check).
+    WrongAnswer,
+    /// The scene or an override is invalid; the run never started.
+    BadInput,
+    /// A sink failed (disk full, unwritable file); says nothing about the method.
     Recording,
 }
 
 impl FailureKind {
-    pub fn name(self) -> &'static str {
+    /// Every kind, in the order of the charts' legends.
+    pub const ALL: [FailureKind; 10] = [
+        FailureKind::NoConvergence,
+        FailureKind::ActiveSetCycle,
+        FailureKind::Diverged,
+        FailureKind::NonFinite,
+        FailureKind::InvertedElement,
+        FailureKind::LinearSolver,
+        FailureKind::LostContact,
+        FailureKind::WrongAnswer,
+        FailureKind::BadInput,
+        FailureKind::Recording,
+    ];
+
+    /// The kebab-case name (as serialised, in indexes, charts and the CLI).
+    pub fn as_str(self) -> &'static str {
         match self {
             FailureKind::NoConvergence => "no-convergence",
             FailureKind::ActiveSetCycle => "active-set-cycle",
@@ -37,8 +66,26 @@ impl FailureKind {
             FailureKind::NonFinite => "non-finite",
             FailureKind::InvertedElement => "inverted-element",
             FailureKind::LinearSolver => "linear-solver",
+            FailureKind::LostContact => "lost-contact",
+            FailureKind::WrongAnswer => "wrong-answer",
+            FailureKind::BadInput => "bad-input",
             FailureKind::Recording => "recording",
         }
+    }
+
+    /// Parse a name, the older `cycling` and `singular` included (None when unknown).
+    pub fn parse(s: &str) -> Option<FailureKind> {
+        match s {
+            "cycling" => Some(FailureKind::ActiveSetCycle),
+            "singular" => Some(FailureKind::LinearSolver),
+            _ => FailureKind::ALL.into_iter().find(|k| k.as_str() == s),
+        }
+    }
+}
+
+impl std::fmt::Display for FailureKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 
@@ -61,9 +108,48 @@ pub struct ChangingPoint {
     pub xi: f64,
 }
 
+impl ChangingPoint {
+    /// One phrase: `node 12 of `base`: 5 changes from iteration 2, ξ = 0.41: Stick@3 → Open@-`.
+    pub fn describe(&self) -> String {
+        let states: Vec<String> = (self.history.iter())
+            .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
+            .collect();
+        format!(
+            "{} of `{}`: {} changes from iteration {}, ξ = {}: {}",
+            self.slave_label,
+            self.pair_name,
+            self.changes,
+            self.first_change,
+            crate::format::plain(self.xi),
+            states.join(" → ")
+        )
+    }
+}
+
 /// A point's contact decision at one iterate.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PointDecision {
     pub state: ContactState,
     pub segment: Option<usize>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_match_serde_and_older_names_still_read() {
+        for k in FailureKind::ALL {
+            assert_eq!(FailureKind::parse(k.as_str()), Some(k));
+            assert_eq!(serde_json::to_string(&k).unwrap(), format!("\"{}\"", k.as_str()));
+        }
+        assert_eq!(FailureKind::parse("nope"), None);
+        for (old, k) in [
+            ("cycling", FailureKind::ActiveSetCycle),
+            ("singular", FailureKind::LinearSolver),
+        ] {
+            assert_eq!(FailureKind::parse(old), Some(k));
+            assert_eq!(serde_json::from_str::<FailureKind>(&format!("\"{old}\"")).unwrap(), k);
+        }
+    }
 }

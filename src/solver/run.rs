@@ -46,26 +46,7 @@ fn changing(points: &[ChangingPoint]) -> String {
     if points.is_empty() {
         return String::new();
     }
-    let names: Vec<String> = points
-        .iter()
-        .take(4)
-        .map(|p| {
-            let segs: Vec<String> = p
-                .history
-                .iter()
-                .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
-                .collect();
-            format!(
-                "{} `{}` ({} changes from iteration {}, ξ = {:.3}: {})",
-                p.slave_label,
-                p.pair_name,
-                p.changes,
-                p.first_change,
-                p.xi,
-                segs.join(" → ")
-            )
-        })
-        .collect();
+    let names: Vec<String> = points.iter().take(4).map(ChangingPoint::describe).collect();
     format!("; changing contact points: {}", names.join("; "))
 }
 

@@ -1,10 +1,10 @@
-//! The one place that turns a [`SolveError`] into a [`FailureKind`].
+//! The one place that turns a [`SolveError`] into the run's [`FailureKind`].
 //!
-//! `SolveError::StepFailed` carries the solver's typed failure kind; this maps it onto the
-//! sweep's kinds. Cycling is told apart from plain non-convergence by the active-set
-//! changes of the failing attempt's last iterations (from the `/iteration` records).
+//! `SolveError::StepFailed` carries the solver's failure kind; a non-convergence whose last
+//! iterations kept changing the active set (from the `/iteration` records) is counted as an
+//! active-set cycle.
 
-use super::kind::FailureKind;
+use crate::record::FailureKind;
 use crate::solver::SolveError;
 
 /// What the iteration records of the failing attempt showed.
@@ -24,18 +24,12 @@ impl FailureEvidence {
 
 /// The kind of a failed run (`None` for an interruption, which is not a failure).
 pub fn classify(err: &SolveError, evidence: &FailureEvidence) -> Option<FailureKind> {
-    use crate::record::FailureKind as Solver;
     match err {
         SolveError::Interrupted { .. } => None,
         SolveError::Observer(_) => Some(FailureKind::Recording),
         SolveError::StepFailed { kind, .. } => Some(match kind {
-            Solver::NoConvergence if evidence.cycling() => FailureKind::Cycling,
-            Solver::NoConvergence => FailureKind::NoConvergence,
-            Solver::ActiveSetCycle => FailureKind::Cycling,
-            Solver::Diverged | Solver::NonFinite => FailureKind::Diverged,
-            Solver::InvertedElement => FailureKind::InvertedElement,
-            Solver::LinearSolver => FailureKind::Singular,
-            Solver::Recording => FailureKind::Recording,
+            FailureKind::NoConvergence if evidence.cycling() => FailureKind::ActiveSetCycle,
+            other => *other,
         }),
     }
 }
@@ -44,7 +38,7 @@ pub fn classify(err: &SolveError, evidence: &FailureEvidence) -> Option<FailureK
 mod tests {
     use super::*;
 
-    fn step(kind: crate::record::FailureKind) -> SolveError {
+    fn step(kind: FailureKind) -> SolveError {
         SolveError::StepFailed {
             increment: 3,
             t: 0.5,
@@ -59,19 +53,19 @@ mod tests {
 
     #[test]
     fn solver_kinds_map_to_sweep_kinds() {
-        use crate::record::FailureKind as S;
+        use FailureKind as S;
         let quiet = FailureEvidence::default();
         let busy = FailureEvidence {
             active_set_changes: vec![0, 0, 1, 1, 0, 1, 1],
         };
         let cases = [
             (S::NoConvergence, &quiet, FailureKind::NoConvergence),
-            (S::NoConvergence, &busy, FailureKind::Cycling),
-            (S::ActiveSetCycle, &quiet, FailureKind::Cycling),
+            (S::NoConvergence, &busy, FailureKind::ActiveSetCycle),
+            (S::ActiveSetCycle, &quiet, FailureKind::ActiveSetCycle),
             (S::Diverged, &quiet, FailureKind::Diverged),
-            (S::NonFinite, &busy, FailureKind::Diverged),
+            (S::NonFinite, &busy, FailureKind::NonFinite),
             (S::InvertedElement, &quiet, FailureKind::InvertedElement),
-            (S::LinearSolver, &quiet, FailureKind::Singular),
+            (S::LinearSolver, &quiet, FailureKind::LinearSolver),
         ];
         for (kind, ev, expect) in cases {
             assert_eq!(classify(&step(kind), ev), Some(expect), "{kind:?}");

@@ -6,12 +6,11 @@
 
 mod classify;
 mod collect;
-mod kind;
 mod progress;
 
+pub use crate::record::FailureKind;
 pub use classify::{classify, FailureEvidence};
 pub use collect::{Collector, ContactLoss, CrossingJump, RunData};
-pub use kind::FailureKind;
 pub use progress::{ProgressLine, ProgressSink};
 
 use crate::record::mcap_sink::{McapOptions, McapSink};
@@ -153,7 +152,6 @@ impl Study {
         observers: &mut [&mut dyn Observer],
         stop: &AtomicBool,
     ) -> Result<StudyOutcome, StudyError> {
-        let started = Instant::now();
         let (src, problem) = match crate::load_scene(&self.scene, &self.sets) {
             Ok(x) => x,
             Err(e) => {
@@ -174,25 +172,49 @@ impl Study {
             Some(p) => Some(create(p, opts.positions_every)?),
             None => None,
         };
-        let mut collector = Collector::default();
-        let mut sinks: Vec<&mut dyn Observer> = vec![&mut collector];
+        let mut sinks: Vec<&mut dyn Observer> = Vec::new();
         if let Some(m) = mcap.as_mut() {
             sinks.push(m);
         }
         for o in observers.iter_mut() {
             sinks.push(&mut **o);
         }
-        let mut fan = Fanout { sinks };
-        let result = crate::solver::run(&problem, &info, &mut fan, stop);
-        drop(fan);
-        Ok(outcome_of(&result, collector, &problem, &info, started))
+        Ok(run_loaded(&problem, &info, &mut sinks, stop).outcome)
     }
 }
 
+/// A finished solve: its typed outcome (what sweeps and the service keep) and the solver's
+/// own summary or error (the figures `contrail run` prints).
+pub struct Finished {
+    pub outcome: StudyOutcome,
+    pub result: Result<crate::solver::RunSummary, SolveError>,
+}
+
+/// Solve a loaded problem, every record handed to `observers` and to the collector that
+/// makes the outcome: the one runner behind [`Study::run`], `contrail run` and so the
+/// service's workers (which run `contrail run`).
+pub fn run_loaded(
+    problem: &crate::problem::Problem,
+    info: &crate::record::RunInfo,
+    observers: &mut [&mut dyn Observer],
+    stop: &AtomicBool,
+) -> Finished {
+    let started = Instant::now();
+    let mut collector = Collector::default();
+    let mut sinks: Vec<&mut dyn Observer> = vec![&mut collector];
+    for o in observers.iter_mut() {
+        sinks.push(&mut **o);
+    }
+    let mut fan = Fanout { sinks };
+    let result = crate::solver::run(problem, info, &mut fan, stop);
+    drop(fan);
+    let outcome = outcome_of(&result, collector, problem, info, started);
+    Finished { outcome, result }
+}
+
 /// The typed outcome of a finished solve: its status (a failure classified from the error
-/// and the collector's evidence), figures and data. `Study::run` and `contrail run
-/// --progress` both end with it.
-pub fn outcome_of(
+/// and the collector's evidence), figures and data.
+fn outcome_of(
     result: &Result<crate::solver::RunSummary, SolveError>,
     collector: Collector,
     problem: &crate::problem::Problem,

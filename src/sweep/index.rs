@@ -289,7 +289,7 @@ mod tests {
             transfer: "continuous".into(),
             params: [("contact.mu".to_string(), "0.1".to_string())].into(),
             status: "failed".into(),
-            failure_kind: Some(FailureKind::Cycling),
+            failure_kind: Some(FailureKind::ActiveSetCycle),
             failure_increment: Some(3),
             failure_t: Some(0.5),
             load_fraction: 0.25,
@@ -317,7 +317,7 @@ mod tests {
         let head: Vec<&str> = lines.next().unwrap().split(',').collect();
         assert_eq!(head[6], "contact.mu");
         let line = lines.next().unwrap();
-        assert!(line.starts_with("a,0,s,crossing,continuous,continuous,0.1,failed,cycling,3,0.5,0.25,"));
+        assert!(line.starts_with("a,0,s,crossing,continuous,continuous,0.1,failed,active-set-cycle,3,0.5,0.25,"));
         assert!(line.contains(",\"a, b\","), "{line}");
         assert!(line.ends_with("no convergence | hint"));
     }
