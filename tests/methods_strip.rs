@@ -244,7 +244,7 @@ fn augmented_peak_force_does_not_depend_on_the_penalty() {
 /// The table of docs/methods.md: every smoothing on every mesh to 240×8, and the penalty
 /// study over five decades.
 #[test]
-#[ignore = "minutes: cargo test --release --test methods_strip -- --ignored --nocapture"]
+#[ignore = "minutes: cargo test --release --test methods_strip methods_strip_full_study -- --ignored --nocapture"]
 fn methods_strip_full_study() {
     let mut rows = Vec::new();
     for mesh in [[24, 1], [48, 2], [120, 4], [240, 8]] {
