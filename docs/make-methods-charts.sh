@@ -22,4 +22,5 @@ chart stability "$index" --study ironing --x stepping.increments --y body.block.
 chart pareto "$index" --study capstan-polygon --metric analytic_err -o docs/methods-capstan-polygon-pareto
 chart stability "$index" --study capstan-polygon --x stepping.increments --y body.belt.mesh.elements --panel family -o docs/methods-capstan-polygon-stability
 chart pareto "$index" --study capstan-fillet --metric analytic_err -o docs/methods-capstan-fillet-pareto
+chart stability "$index" --study capstan-fillet --x rigid.drum.fillet --y body.belt.mesh.elements --panel family -o docs/methods-capstan-fillet-stability
 cp "$out/index.csv" docs/methods-index.csv

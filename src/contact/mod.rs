@@ -1,8 +1,10 @@
 //! Node-to-segment frictional contact in the covariant description.
 
 pub mod augmented;
+pub mod config;
 pub mod events;
 pub mod geometry;
+pub mod history;
 pub mod law;
 pub mod pairing;
 pub mod point;

@@ -4,84 +4,16 @@
 //! local residuals and tangents to the caller's assembler — it never sees global equation
 //! numbers.
 
+pub use super::config::Config;
+use super::config::SegNodes;
 use super::events::{crossing_event, CrossingEvent, PointSnapshot};
-use super::geometry::SegmentGeom;
+pub use super::history::{Decision, PointHistory, PointNow};
 use super::law::ContactState;
 use super::pairing::{self, Pairing};
-use super::point::{Closed, Multiplier, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES};
+use super::point::{Closed, Multiplier, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
-use crate::model::{ContactPair, Enforcement, Master, Model, RigidShape, Slave, Smoothing};
-
-/// History of one slave point at the last converged increment.
-#[derive(Debug, Clone, Copy)]
-pub struct PointHistory {
-    /// Segment the point is tracked on (kept while open, for the neighbour walk).
-    pub segment: Option<usize>,
-    /// Closed (in contact) at the last converged increment.
-    pub closed: bool,
-    pub xi: f64,
-    /// Covariant traction `T_1` on `segment`.
-    pub t1: f64,
-    pub a11: f64,
-    /// Gap at the last converged increment of a point that was paired but open (NaN
-    /// otherwise): its first touch is interpolated from it.
-    pub gap: f64,
-    pub crossings: u32,
-    /// Closed and sticking at the last converged increment.
-    pub stuck: bool,
-    /// The slave's position and the master's unit tangent at the contact point at the last
-    /// converged increment (the spatial scheme's history).
-    pub slave: [f64; 2],
-    pub tangent: [f64; 2],
-}
-
-impl PointHistory {
-    /// Keep the spatial history of a point paired at the converged increment.
-    fn store_spatial(&mut self, slave: [f64; 2], e: &PointEval<f64>) {
-        self.slave = slave;
-        let sq = e.proj.a11.sqrt();
-        self.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
-    }
-}
-
-impl Default for PointHistory {
-    fn default() -> Self {
-        PointHistory {
-            segment: None,
-            closed: false,
-            xi: f64::NAN,
-            t1: 0.0,
-            a11: f64::NAN,
-            gap: f64::NAN,
-            crossings: 0,
-            stuck: false,
-            slave: [f64::NAN; 2],
-            tangent: [f64::NAN; 2],
-        }
-    }
-}
-
-/// Evaluation of one slave point at the current iterate.
-#[derive(Debug, Clone, Copy)]
-pub struct PointNow {
-    pub segment: Option<usize>,
-    pub eval: Option<PointEval<f64>>,
-    pub path: Path,
-}
-
-impl Default for PointNow {
-    fn default() -> Self {
-        PointNow {
-            segment: None,
-            eval: None,
-            path: Path {
-                direction: 0,
-                between: 0.0,
-            },
-        }
-    }
-}
+use crate::model::{ContactPair, Enforcement, Model, Slave, Smoothing};
 
 /// Contact state of all pairs.
 #[derive(Debug, Clone, Default)]
@@ -107,96 +39,8 @@ pub struct ContactSystem {
     pub(super) multipliers: Vec<Vec<Multiplier>>,
 }
 
-/// A point's contact decision at one iterate: its state and the segment it is tracked on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Decision {
-    pub state: ContactState,
-    pub segment: Option<usize>,
-}
-
 /// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
 pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64]) + 'a;
-
-/// Node positions and time the contact evaluation works on.
-pub struct Config<'a> {
-    pub model: &'a Model,
-    /// Full displacement vector (2 per node).
-    pub u: &'a [f64],
-    pub t: f64,
-}
-
-impl Config<'_> {
-    fn node(&self, n: usize) -> [f64; 2] {
-        let x = self.model.nodes[n];
-        [x[0] + self.u[2 * n], x[1] + self.u[2 * n + 1]]
-    }
-
-    /// Current position of a slave point.
-    pub fn slave_pos(&self, s: Slave) -> [f64; 2] {
-        let (r, v) = match s {
-            Slave::Node(n) => return self.node(n),
-            Slave::RigidPoint(r) => (r, 0),
-            Slave::RigidVertex(r, v) => (r, v),
-        };
-        let body = &self.model.rigid[r];
-        let at = body.vertex(v).expect("validated by the scene builder");
-        let o = body.offset(self.t);
-        [at[0] + o[0], at[1] + o[1]]
-    }
-
-    /// The global nodes (or the rigid piece) of segment `k` of a pair's master.
-    fn seg_nodes(&self, pair: &ContactPair, k: usize) -> SegNodes {
-        match &pair.master {
-            Master::Face {
-                segments, prev, next, ..
-            } => {
-                let smooth = [
-                    prev[k].map(|p| segments[p][0]),
-                    Some(segments[k][0]),
-                    Some(segments[k][1]),
-                    next[k].map(|n| segments[n][1]),
-                ];
-                match pair.smoothing {
-                    Smoothing::None => SegNodes::Linear(segments[k]),
-                    Smoothing::Hermite => SegNodes::Smooth(Smoothing::Hermite, smooth),
-                    Smoothing::Bezier => SegNodes::Smooth(Smoothing::Bezier, smooth),
-                }
-            }
-            Master::Rigid { body, .. } => {
-                let b = &self.model.rigid[*body];
-                let RigidShape::Surface { pieces } = &b.shape else {
-                    unreachable!("validated")
-                };
-                SegNodes::Rigid(pieces[k], b.offset(self.t))
-            }
-        }
-    }
-
-    /// Current geometry of segment `k` of a pair's master.
-    pub fn segment(&self, pair: &ContactPair, k: usize) -> SegmentGeom<f64> {
-        match self.seg_nodes(pair, k) {
-            SegNodes::Linear([a, b]) => SegmentGeom::linear(self.node(a), self.node(b)),
-            SegNodes::Smooth(kind, [p, a, b, n]) => {
-                let (p, n) = (p.map(|p| self.node(p)), n.map(|n| self.node(n)));
-                let (a, b) = (self.node(a.expect("segment end")), self.node(b.expect("segment end")));
-                match kind {
-                    Smoothing::Bezier => SegmentGeom::bezier(p, a, b, n),
-                    _ => SegmentGeom::hermite(p, a, b, n),
-                }
-            }
-            SegNodes::Rigid(p, o) => SegmentGeom::from_piece(&p, o),
-        }
-    }
-}
-
-/// Where a master segment's geometry comes from.
-enum SegNodes {
-    Linear([usize; 2]),
-    /// A smoothed segment: the neighbour before, the two ends, the neighbour after (global
-    /// nodes).
-    Smooth(Smoothing, [Option<usize>; 4]),
-    Rigid(crate::model::Piece, [f64; 2]),
-}
 
 /// Local node slots of one contact point (at most [`MAX_NODES`], kept on the stack: the
 /// contact evaluation allocates nothing per point and iteration).

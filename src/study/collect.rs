@@ -37,7 +37,8 @@ pub struct RunData {
     /// scene has no monitor).
     pub curve: Vec<[f64; 3]>,
     pub crossings: Vec<CrossingJump>,
-    /// `[x, normal force]` of every contact point at the last converged increment.
+    /// `[x, normal force]` of every contact point with a position at the last converged
+    /// increment.
     pub final_contact: Vec<[f64; 2]>,
     /// Sum of the reactions `[x, y]` at the last converged increment.
     pub final_reaction: [f64; 2],
@@ -93,7 +94,13 @@ impl Observer for Collector {
             trial_before: c.trial_before,
             trial_after: c.trial_after,
         }));
-        self.data.final_contact = view.contact.iter().map(|p| [p.position[0], p.normal_force]).collect();
+        // a point without a position (a rigid vertex open on its face: NaN) is left out, so
+        // that the run record holds finite numbers only (JSON has no NaN: it would be written
+        // as null and the record would not read back)
+        self.data.final_contact = (view.contact.iter())
+            .map(|p| [p.position[0], p.normal_force])
+            .filter(|v| v.iter().all(|x| x.is_finite()))
+            .collect();
         self.data.final_reaction = rec.reaction_total;
         let mut closed = vec![false; self.pair_state.len()];
         for p in view.contact {

@@ -186,6 +186,13 @@ fn flag(checks: &Checks, rec: &RunRecord, m: &Metrics) -> Option<Flag> {
         );
         return Some((FailureKind::WrongAnswer, None, msg));
     }
+    if over(m.peak_err, checks.max_peak_error) {
+        let msg = format!(
+            "relative peak error {:.3e} above the plan's bound",
+            m.peak_err.unwrap_or(0.0)
+        );
+        return Some((FailureKind::WrongAnswer, None, msg));
+    }
     if over(m.jump_rel_max, checks.max_crossing_jump_rel) {
         let worst = rec.outcome.data.crossings.iter().max_by(|a, b| {
             let r = |j: &crate::study::CrossingJump| (j.trial_after - j.trial_before).abs() / j.trial_before.abs();
@@ -389,6 +396,22 @@ mod tests {
         assert_eq!(rows[1].failure_increment, Some(3));
         assert!((rows[1].metrics.jump_rel_max.unwrap() - 0.2).abs() < 1e-12);
         assert_eq!(rows[1].status, "completed");
+    }
+
+    #[test]
+    fn a_peak_off_the_reference_is_a_wrong_answer() {
+        let p = plan("reference = { kind = \"finest\" }\nchecks = { max_peak_error = 0.05 }");
+        let curve = |peak: f64| vec![[0.0, 0.0, 0.0], [0.5, 1.0, peak], [1.0, 2.0, 1.0]];
+        let recs = vec![
+            rec("fine", 0, "continuous", 40, curve(10.0)),
+            rec("near", 1, "continuous", 10, curve(10.4)),
+            rec("off", 2, "spatial", 10, curve(8.9)),
+        ];
+        let rows = score(&p, &recs, &|r| r.id.clone()).unwrap();
+        assert!(rows[0].passed() && rows[1].passed());
+        assert!((rows[2].metrics.peak_err.unwrap() + 0.11).abs() < 1e-12);
+        assert_eq!(rows[2].failure_kind, Some(FailureKind::WrongAnswer));
+        assert!(rows[2].message.contains("peak error"), "{}", rows[2].message);
     }
 
     #[test]

@@ -1,0 +1,83 @@
+//! What each slave point carries: its history at the last converged increment (segment,
+//! convective coordinate, covariant traction, the spatial and augmented data), its
+//! evaluation at the current iterate, and its contact decision.
+
+use super::law::ContactState;
+use super::point::{Path, PointEval};
+
+/// History of one slave point at the last converged increment.
+#[derive(Debug, Clone, Copy)]
+pub struct PointHistory {
+    /// Segment the point is tracked on (kept while open, for the neighbour walk).
+    pub segment: Option<usize>,
+    /// Closed (in contact) at the last converged increment.
+    pub closed: bool,
+    pub xi: f64,
+    /// Covariant traction `T_1` on `segment`.
+    pub t1: f64,
+    pub a11: f64,
+    /// Gap at the last converged increment of a point that was paired but open (NaN
+    /// otherwise): its first touch is interpolated from it.
+    pub gap: f64,
+    pub crossings: u32,
+    /// Closed and sticking at the last converged increment.
+    pub stuck: bool,
+    /// The slave's position and the master's unit tangent at the contact point at the last
+    /// converged increment (the spatial scheme's history).
+    pub slave: [f64; 2],
+    pub tangent: [f64; 2],
+}
+
+impl PointHistory {
+    /// Keep the spatial history of a point paired at the converged increment.
+    pub(super) fn store_spatial(&mut self, slave: [f64; 2], e: &PointEval<f64>) {
+        self.slave = slave;
+        let sq = e.proj.a11.sqrt();
+        self.tangent = [e.proj.rho1[0] / sq, e.proj.rho1[1] / sq];
+    }
+}
+
+impl Default for PointHistory {
+    fn default() -> Self {
+        PointHistory {
+            segment: None,
+            closed: false,
+            xi: f64::NAN,
+            t1: 0.0,
+            a11: f64::NAN,
+            gap: f64::NAN,
+            crossings: 0,
+            stuck: false,
+            slave: [f64::NAN; 2],
+            tangent: [f64::NAN; 2],
+        }
+    }
+}
+
+/// Evaluation of one slave point at the current iterate.
+#[derive(Debug, Clone, Copy)]
+pub struct PointNow {
+    pub segment: Option<usize>,
+    pub eval: Option<PointEval<f64>>,
+    pub path: Path,
+}
+
+impl Default for PointNow {
+    fn default() -> Self {
+        PointNow {
+            segment: None,
+            eval: None,
+            path: Path {
+                direction: 0,
+                between: 0.0,
+            },
+        }
+    }
+}
+
+/// A point's contact decision at one iterate: its state and the segment it is tracked on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Decision {
+    pub state: ContactState,
+    pub segment: Option<usize>,
+}
