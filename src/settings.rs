@@ -73,6 +73,14 @@ pub enum LineSearch {
 #[serde(deny_unknown_fields, default)]
 pub struct NewtonSettings {
     pub max_iterations: usize,
+    /// Iterations beyond `max_iterations` that Newton may take while the contact active set
+    /// is still settling: an iteration that leaves the points' decisions (open, stick, slip,
+    /// and their segments) in a pattern not met before in the attempt is progress and
+    /// extends the budget by one, up to this many (0: never). A contact front that moves
+    /// one node per iteration — a sheet peeling off a facet, a touchdown zone travelling
+    /// along a beam — needs as many iterations as it has nodes to cross, at any step size;
+    /// a pattern met again (a cycle) extends nothing.
+    pub max_settling_iterations: usize,
     /// Converged when `‖R‖ ≤ residual_tol · F_ref` (F_ref: norm of the internal forces) …
     pub residual_tol: f64,
     /// … or `‖R‖ ≤ residual_abs`, …
@@ -135,6 +143,7 @@ impl Default for NewtonSettings {
     fn default() -> Self {
         NewtonSettings {
             max_iterations: 25,
+            max_settling_iterations: 400,
             residual_tol: 1e-9,
             residual_abs: 1e-10,
             energy_tol: 1e-16,

@@ -8,8 +8,10 @@
 //!  ====================  rigid plane y = 0: ε_N = 1e4, ε_T = 1e3, μ = 0.3
 //! ```
 //! t ∈ [0, 1]: press by 0.005; t ∈ [1, 3]: drag by 0.05.
-//! References: in stick, the friction force on each slave node is −ε_T times its tangential
-//! displacement since it closed (rigid flat master: a11 is constant), to 1e-8 relative; in
+//! References: in stick, the friction force on each slave node grows by −ε_T times its
+//! tangential displacement of the increment from where the last increment left it (rigid
+//! flat master: a11 is constant; the block starts resting on the plane without force), to
+//! 1e-8 relative; in
 //! sliding, the drag force on the top equals μ times the normal force, to 1e-8 relative.
 
 mod common;
@@ -23,29 +25,34 @@ const MU: f64 = 0.3;
 fn block_slide_stick_force_is_penalty_times_slip() {
     let m = common::scene("block-slide", &[]);
     let (_, mem) = common::solve_ok(&m);
-    let n_slaves = mem.contact[0].len();
-    let mut first_x = vec![None; n_slaves];
+    // per point, its position and friction force at the last increment: the bottom nodes
+    // rest on the plane at t = 0, where they start without force
+    let mut last: Vec<Option<(f64, f64)>> = (m.model.contacts[0].slaves.iter())
+        .map(|s| match s {
+            contrail::model::Slave::Node(n) => Some((m.model.nodes[*n][0], 0.0)),
+            _ => None,
+        })
+        .collect();
     let mut checked = 0;
     for points in &mem.contact {
         for (i, p) in points.iter().enumerate() {
             if p.state == ContactState::Open {
-                first_x[i] = None;
+                last[i] = None;
                 continue;
             }
-            let Some(x0) = first_x[i] else {
-                first_x[i] = Some(p.position[0]); // anchor: end of the closing increment
-                continue;
-            };
-            if p.state == ContactState::Stick {
-                let fx = p.traction * p.tangent[0];
-                let expect = -EPS_T * (p.position[0] - x0);
+            let fx = p.traction * p.tangent[0];
+            if let (Some((x0, f0)), ContactState::Stick) = (last[i], p.state) {
+                // in stick the force grows by −ε_T times the slip of the increment, from
+                // where the last increment left it (in stick or on the cone)
+                let expect = f0 - EPS_T * (p.position[0] - x0);
                 assert!(
                     (fx - expect).abs() <= 1e-8 * expect.abs().max(1e-6),
-                    "node {}: friction {fx:e} vs −ε_T·slip {expect:e}",
+                    "node {}: friction {fx:e} vs {expect:e}",
                     p.slave_label
                 );
                 checked += 1;
             }
+            last[i] = Some((p.position[0], fx));
         }
     }
     println!("checked {checked} stick states");

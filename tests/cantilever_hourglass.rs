@@ -12,10 +12,11 @@
 //! Reference: the tip deflection of the same load on 48 × 2 plain EAS elements (aspect
 //! 0.83, stable), 8.58 (no closed form at k = 16; 24 × 1, 120 × 1 and 240 × 2 give the same
 //! to 0.05 %). Measured and asserted:
-//! - plain `q4-eas` on 240 × 1 (St. Venant–Kirchhoff) zig-zags near the clamp: tip deflection
-//!   more than 5 % off the reference (9.80) and the bottom row folds (consecutive edges
-//!   pointing back against each other) along the first tenth of the length; with Neo-Hooke
-//!   it does not converge;
+//! - plain `q4-eas` on 240 × 1 (St. Venant–Kirchhoff) zig-zags near the clamp until its
+//!   elements fold (det F < 0 at Gauss points): the run fails there (before the element
+//!   kernel checked det F it went on to a tip deflection 14 % off the reference, 9.80,
+//!   exit 0); should it reach the load, the assertion is a deflection more than 5 % off
+//!   with the bottom row zig-zag; with Neo-Hooke it does not converge;
 //! - `q4-eas-stab` (β = 0.05 of the bilinear energy) on 240 × 1 with Neo-Hooke: within
 //!   0.3 % of the reference, no fold (with St. Venant–Kirchhoff, whose uniaxial stress peaks
 //!   at 42 % compression, the branch it follows depends on round-off: printed only);
@@ -61,9 +62,12 @@ fn cantilever_hourglass_plain_eas_zig_zags_and_the_stabilised_element_does_not()
     let (plain, x) = run(&[P16, incs, PLAIN, fine]);
     let changes = folds(&x);
     println!("240x1 q4-eas SVK: {plain:?}, {changes} folds of the bottom row near the clamp");
-    let plain = plain.expect("plain EAS reaches the load with SVK (on a wrong path)");
-    assert!((plain / reference - 1.0).abs() > 0.05, "no hourglassing seen: {plain}");
-    assert!(changes >= 2, "bottom row near the clamp is not zig-zag: {x:?}");
+    // the zig-zag folds elements (det F < 0 at Gauss points): the run fails rather than
+    // follow that path to the load; were it to get there, its answer is visibly wrong
+    if let Some(plain) = plain {
+        assert!((plain / reference - 1.0).abs() > 0.05, "no hourglassing seen: {plain}");
+        assert!(changes >= 2, "bottom row near the clamp is not zig-zag: {x:?}");
+    }
 
     let nh = "body.strip.material.model=neo-hookean";
     let (plain_nh, _) = run(&[P16, incs, PLAIN, fine, nh]);

@@ -50,3 +50,39 @@ fn a_punch_outline_listed_the_wrong_way_round_is_refused() {
     // listed the right way round with the same gap, it loads
     common::scene_text(&text.replace("size = [6.0, 2.0]", "size = [6.0, 1.99]"));
 }
+
+/// A punch listed the wrong way round 1.0 above the block (four search radii away): no
+/// slave point is within reach at the start, yet each is on the solid side of the outline,
+/// and run anyway the punch swept through the block with no force and exit 0.
+#[test]
+fn a_reversed_punch_far_from_the_block_is_refused_too() {
+    let scene = |outline: &str| {
+        format!(
+            r#"name = "far-punch"
+[[body]]
+name = "block"
+material = {{ model = "neo-hookean", young = 1.0e3, poisson = 0.3 }}
+mesh = {{ kind = "rectangle", origin = [-1.5, -1.0], size = [3.0, 1.0], elements = [24, 8] }}
+[[fix]]
+body = "block"
+nodes = "bottom"
+components = ["x", "y"]
+[[rigid]]
+name = "punch"
+polyline = {outline}
+move = {{ y = -1.1 }}
+[[contact]]
+name = "punch"
+slave = {{ body = "block", nodes = "top" }}
+master = {{ rigid = "punch" }}
+eps_n = 1.0e5
+"#
+        )
+    };
+    let err = common::scene_text_err(&scene("[[0.5, 1.5], [0.5, 1.0], [-0.5, 1.0], [-0.5, 1.5]]"));
+    assert!(
+        err.contains("start inside rigid body `punch`") && err.contains("reverse order"),
+        "{err}"
+    );
+    common::scene_text(&scene("[[-0.5, 1.5], [-0.5, 1.0], [0.5, 1.0], [0.5, 1.5]]"));
+}

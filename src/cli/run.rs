@@ -296,6 +296,19 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
                 ),
             );
     }
+    if let Some(p) = &s.deep_penetration {
+        row(
+            o,
+            "WARNING",
+            format!(
+                "contact `{}`: penetration up to {:.0} % of the element size ({} by {:.3e}): the penalty is soft for this load; see `/log`",
+                p.pair,
+                100.0 * p.ratio,
+                p.slave,
+                p.depth
+            ),
+        );
+    }
 }
 
 /// The exit: success, or the failure with where its record is.

@@ -22,6 +22,9 @@ pub struct PointHistory {
     pub crossings: u32,
     /// Closed and sticking at the last converged increment.
     pub stuck: bool,
+    /// Paired (within reach of its master, open or closed) at the last converged increment,
+    /// or in the initial configuration before the first.
+    pub within_reach: bool,
     /// The slave's position and the master's unit tangent at the contact point at the last
     /// converged increment (the spatial scheme's history).
     pub slave: [f64; 2],
@@ -48,6 +51,7 @@ impl Default for PointHistory {
             gap: f64::NAN,
             crossings: 0,
             stuck: false,
+            within_reach: false,
             slave: [f64::NAN; 2],
             tangent: [f64::NAN; 2],
         }

@@ -64,6 +64,12 @@ pub struct Pairing {
     /// The point is in the wedge of a concave vertex at the end of `segment` its `ξ` points
     /// to: it is pinned to that vertex (point-to-node form, [`super::vertex`]).
     pub pinned: bool,
+    /// The tracked point projects onto the master (`|ξ| ≤ 1`) deeper inside it than the
+    /// search radius: unpaired, since from the geometry alone it cannot be told from a
+    /// point beyond the far side of a thin body. A point that was paired at the previous
+    /// iterate has passed through the master in one step (see
+    /// `ContactSystem::tunnelled`).
+    pub beyond_reach_inside: bool,
 }
 
 /// Locate slave `slave` of `pair`, starting from `start` when it is tracked. `gap_shift`
@@ -101,8 +107,15 @@ pub fn locate(
         return Pairing::default();
     };
     loc.gap -= gap_shift;
-    if loc.gap.abs() > pair.search_radius || is_own_segment(pair, slave, loc.segment) {
-        return Pairing::default(); // out of reach: untracked
+    if is_own_segment(pair, slave, loc.segment) {
+        return Pairing::default();
+    }
+    if loc.gap.abs() > pair.search_radius {
+        // out of reach: untracked
+        return Pairing {
+            beyond_reach_inside: start.is_some() && loc.gap < 0.0 && loc.xi.abs() <= 1.0 + XI_TOL,
+            ..Pairing::default()
+        };
     }
     let valid = wedge || loc.xi.abs() <= 1.0 + XI_TOL || held_at_free_end(pair, loc, start, closed_before);
     Pairing {
@@ -110,6 +123,7 @@ pub fn locate(
         located: valid.then_some(loc),
         excluded: false,
         pinned: wedge && loc.xi.abs() > 1.0 + XI_TOL,
+        beyond_reach_inside: false,
     }
 }
 
@@ -154,6 +168,7 @@ pub fn held(cfg: &Config, pair: &ContactPair, slave: Slave, segment: Option<usiz
         excluded: false,
         // a C1-smoothed face has no concave kink to be pinned to
         pinned: pair.face_smoothing() == Smoothing::None && concave_wedge(loc, s, rs, &geom, &nb).is_some(),
+        beyond_reach_inside: false,
     }
 }
 

@@ -105,6 +105,24 @@ fn a_point_beyond_the_search_radius_is_not_paired() {
 }
 
 #[test]
+fn a_tracked_point_deeper_inside_than_the_reach_is_flagged_not_paired() {
+    // 3 below the top face (search radius 1), projecting onto it: inside the block
+    let m = block_model(&[[10.0, -3.0], [10.0, 3.0], [10.0, -0.5]]);
+    let tracked = locate_all(&m, Some(0));
+    assert!(
+        tracked[0].located.is_none() && tracked[0].beyond_reach_inside,
+        "{:?}",
+        tracked[0]
+    );
+    // as far outside: out of reach, nothing to flag
+    assert_eq!(tracked[1], Pairing::default());
+    // within reach inside: paired
+    assert!(tracked[2].located.is_some() && !tracked[2].beyond_reach_inside);
+    // never tracked, the search asks no such question
+    assert!(!locate_all(&m, None)[0].beyond_reach_inside);
+}
+
+#[test]
 fn a_penetrating_point_in_the_wedge_of_a_concave_vertex_stays_in_contact() {
     // outline (10, 0) → (0, 0) → (−10, 2): body below, the vertex is concave (the outline
     // turns right). (−0.001, −0.05) is inside, between the two inward normals: it projects

@@ -199,9 +199,15 @@ impl PointProblem {
             None => 0.0,
         };
         if let Some(g0) = c.touch_gap.filter(|g| *g > 0.0) {
-            // anchor at the point of first touch (see [`Closed`])
+            // anchor at the point of first touch (see [`Closed`]); a point held closed by
+            // the solver before it penetrates has not touched yet: no traction (the limit
+            // of the interpolation as the penetration falls to zero)
             let penetration = -proj.gap;
-            let one_minus_s = penetration / (penetration + g0); // 1 − s = −ζ / (ζ_A − ζ)
+            let one_minus_s = if penetration.re() > 0.0 {
+                penetration / (penetration + g0) // 1 − s = −ζ / (ζ_A − ζ)
+            } else {
+                zero
+            };
             t1_trial *= one_minus_s;
             carried *= one_minus_s.re();
         }
@@ -210,13 +216,15 @@ impl PointProblem {
             carried += proj.a11.re().sqrt() * m.tangential;
         }
         let normal_force = eval.normal_force;
-        let (t1, state) = if self.law.mu > 0.0 && normal_force.re() <= 0.0 {
+        let (t1, state) = if self.stick_held && self.law.mu > 0.0 {
+            // the elastic predictor: also at a point touching without pressure yet (a body
+            // resting on it, whose first correction must not slide freely along it)
+            (t1_trial, ContactState::Stick)
+        } else if self.law.mu > 0.0 && normal_force.re() <= 0.0 {
             // touching without pressure (see [`touching`]): no friction to transmit, and no
             // friction stiffness either (the slip branch's `μ ∂N` would couple the normal
             // and tangential motion of a point that carries nothing)
             (zero, ContactState::Slip)
-        } else if self.stick_held && self.law.mu > 0.0 {
-            (t1_trial, ContactState::Stick)
         } else {
             return_map(&self.law, t1_trial, normal_force, proj.a11)
         };
@@ -364,10 +372,19 @@ pub fn penetrating(gap: f64, a11: f64) -> bool {
     gap < -TOUCH_TOLERANCE * 2.0 * a11.sqrt()
 }
 
-/// Whether a point with gap `ζ` touches the master to round-off, `|ζ| ≤ 10⁻¹² · 2√a11` (a
-/// zero-gap start: two bodies meshed against each other, a sheet resting on a rigid facet).
+/// Relative size of the gap, against the segment's length, within which a point counts as
+/// *resting* on its master for the start of an increment ([`touching`]): the precision to
+/// which meshes and outlines are written (coordinates to 7 or 8 digits leave gaps of
+/// 1e-8 between a body and the incline it was drawn on).
+pub const RESTING_TOLERANCE: f64 = 1e-6;
+
+/// Whether a point with gap `ζ` touches the master, `|ζ| ≤ 10⁻⁶ · 2√a11` (a zero-gap
+/// start: two bodies meshed against each other, a sheet resting on a rigid facet, a block
+/// drawn on an incline to the digits of its file). Such a point may be resting on the
+/// master: the solver asks the first correction of an increment whether it is
+/// (`solver::active_set::touching_pushed_in`).
 pub fn touching(gap: f64, a11: f64) -> bool {
-    gap.abs() <= TOUCH_TOLERANCE * 2.0 * a11.sqrt()
+    gap.abs() <= RESTING_TOLERANCE * 2.0 * a11.sqrt()
 }
 
 #[cfg(test)]

@@ -37,6 +37,9 @@ pub struct ContactSystem {
     /// Augmented-Lagrangian multipliers of every point (zero, and unused, in penalty pairs;
     /// see [`super::augmented`]).
     pub(super) multipliers: Vec<Vec<Multiplier>>,
+    /// Points found at the last pairing to have passed through their master (see
+    /// [`Self::tunnelled`]), as `(pair, slave)`.
+    tunnelled: Vec<(usize, usize)>,
 }
 
 /// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
@@ -195,6 +198,7 @@ impl ContactSystem {
             stick_held,
             verifying: false,
             multipliers,
+            tunnelled: Vec::new(),
         }
     }
 
@@ -302,11 +306,19 @@ impl ContactSystem {
     /// Pairing step: locate every slave point of every pair (tracking, search, vertex
     /// rules; see [`super::pairing`]) before any kernel runs.
     pub fn pair(&mut self, cfg: &Config) {
+        self.tunnelled.clear();
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             let grid = &mut self.grids[ip];
             for (is, &slave) in pair.slaves.iter().enumerate() {
                 let now = &self.current[ip][is];
-                let start = now.segment.or(self.committed[ip][is].segment);
+                let hist = &self.committed[ip][is];
+                let start = now.segment.or(hist.segment);
+                // paired (within reach, open or closed) at the previous iterate of this
+                // attempt, or (at its first iterate) at the last converged increment
+                let paired_before = match (now.segment, now.eval) {
+                    (None, None) => hist.within_reach,
+                    (_, e) => e.is_some(),
+                };
                 // closed at the previous iterate of this attempt, or (at its first iterate) at
                 // the last converged increment
                 let closed_before = match (now.segment, now.eval) {
@@ -316,6 +328,9 @@ impl ContactSystem {
                 // an augmented point is closed while `λ_N − ε_N ζ > 0`: the rules see that gap
                 let shift = self.multipliers[ip][is].normal / pair.law.eps_n;
                 self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, closed_before, grid, shift);
+                if paired_before && self.pairings[ip][is].beyond_reach_inside {
+                    self.tunnelled.push((ip, is));
+                }
             }
         }
         let committed = &self.committed;
@@ -336,6 +351,15 @@ impl ContactSystem {
                 }
             }
         }
+    }
+
+    /// The points that, at the last pairing, were found deeper inside their master than the
+    /// search radius although they were paired (within reach) at the previous iterate: they
+    /// passed through it in one step. Unpaired, they would carry no force, and a body could
+    /// go on through a rigid outline or another body with no residual to say so; the solver
+    /// takes such a step as inadmissible (`solver::newton`).
+    pub fn tunnelled(&self) -> &[(usize, usize)] {
+        &self.tunnelled
     }
 
     /// Pair, then evaluate every paired slave point; for each closed point call
@@ -381,6 +405,21 @@ impl ContactSystem {
         }
     }
 
+    /// Take the initial configuration (`cfg` at `u = 0`, `t = 0`) as the converged state the
+    /// first increment starts from: every point within reach of its master is tracked on
+    /// its segment and keeps where it is, as at any converged increment. A point that
+    /// touches at the start (a block resting on a floor, a sheet lying on a facet) then
+    /// has its stick anchor where it rests, so friction holds it from the first increment
+    /// (without it, a block on an incline under its weight slides freely in that increment
+    /// and the tangent is singular); and a point driven through its master in the first
+    /// increment is found on the far side, not lost (see [`Self::tunnelled`]).
+    pub fn start_from_initial_configuration(&mut self, cfg: &Config) {
+        self.evaluate(cfg, &mut |_, _, _| {});
+        self.commit(cfg);
+        self.reset_current();
+        self.tunnelled.clear();
+    }
+
     /// Accept the current iterate as converged; returns the crossing events of this increment.
     pub fn commit(&mut self, cfg: &Config) -> Vec<CrossingEvent> {
         let mut events = Vec::new();
@@ -390,6 +429,7 @@ impl ContactSystem {
                 let old = self.committed[ip][is];
                 let h = &mut self.committed[ip][is];
                 h.segment = now.segment;
+                h.within_reach = now.eval.is_some();
                 match now.eval {
                     Some(e) if e.state != ContactState::Open => {
                         if let (true, Some(a), Some(b)) = (old.closed, old.segment, now.segment) {
@@ -409,13 +449,18 @@ impl ContactSystem {
                         h.store_spatial(cfg.slave_pos(pair.slaves[is]), &e);
                     }
                     Some(e) => {
-                        // paired but open: where it is, for the first touch
+                        // paired but open: where it is, for the first touch (a point resting
+                        // on the master to the precision of the geometry touches already)
                         h.closed = false;
                         h.stuck = false;
                         h.t1 = 0.0;
                         h.xi = e.proj.xi;
                         h.a11 = e.proj.a11;
-                        h.gap = e.proj.gap;
+                        h.gap = if super::point::touching(e.proj.gap, e.proj.a11) {
+                            0.0
+                        } else {
+                            e.proj.gap
+                        };
                         h.store_spatial(cfg.slave_pos(pair.slaves[is]), &e);
                     }
                     None => {

@@ -25,8 +25,9 @@ pub enum Material {
 /// Failure of a constitutive evaluation.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum MaterialError {
-    /// `J = det F ≤ 0`: the element is inverted and the Neo-Hookean energy is undefined.
-    #[error("non-positive Jacobian det F = {0:.3e}")]
+    /// `det C = J² ≤ 0` (the strain is not that of any deformation): the Neo-Hookean energy
+    /// is undefined. (A folded element has `det C > 0`: the element kernel checks `det F`.)
+    #[error("non-positive det C = {0:.3e} (the strain of no deformation)")]
     InvertedJacobian(f64),
 }
 

@@ -38,7 +38,8 @@ use serde::{Deserialize, Serialize};
 pub enum ElementKind {
     /// Bilinear displacement element (locks in bending with one layer).
     Q4,
-    /// Bilinear element with four enhanced strain modes (default; does not lock).
+    /// Bilinear element with four enhanced strain modes (does not lock; can hourglass in
+    /// large compression, see [`Q4EasSafe`](Self::Q4EasSafe)).
     Q4Eas,
     /// `Q4Eas` stabilised against its hourglass instability in compression by a small
     /// share of the displacement-based energy (see [`EAS_STABILISATION`]).
@@ -60,6 +61,33 @@ pub enum ElementError {
     Material(#[from] MaterialError),
     #[error("enhanced-strain parameters did not converge (|R_α| = {0:.3e})")]
     EasNotConverged(f64),
+    /// The enhanced-strain stiffness `K_αα` is singular: the element is degenerate (flattened
+    /// or distorted beyond what its enhanced modes can take).
+    #[error("degenerate element: its enhanced-strain stiffness K_αα is singular")]
+    EasSingular,
+    /// The element is folded: `det F ≤ 0` at a Gauss point of the compatible deformation.
+    #[error("inverted element: det F = {0:.3e} ≤ 0 at a Gauss point")]
+    Inverted(f64),
+}
+
+/// The smallest `det F` of the compatible deformation over the Gauss points of an element
+/// (`F = I + Σ u_I ⊗ ∇N_I`). A folded element has `det F < 0` where it folds while
+/// `C = FᵀF` stays positive definite, so a law written in `C` or `E` (Neo-Hooke's
+/// `ln J = ½ ln det C`, St. Venant–Kirchhoff) cannot see it: the check is the kernel's.
+pub fn min_det_f(geo: &QuadGeometry, u: &[[f64; 2]; 4]) -> f64 {
+    geo.gp
+        .iter()
+        .map(|g| {
+            let mut f = [[1.0, 0.0], [0.0, 1.0]];
+            for (i, ui) in u.iter().enumerate() {
+                for (r, fr) in f.iter_mut().enumerate() {
+                    fr[0] += ui[r] * g.grad[0][i];
+                    fr[1] += ui[r] * g.grad[1][i];
+                }
+            }
+            f[0][0] * f[1][1] - f[0][1] * f[1][0]
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 pub(crate) const XI_NODES: [(f64, f64); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
@@ -461,6 +489,10 @@ pub fn quad_residual_tangent_with(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
+    let det_f = min_det_f(geo, u);
+    if det_f <= 0.0 || !det_f.is_finite() {
+        return Err(ElementError::Inverted(det_f));
+    }
     if kind == ElementKind::Q4EasStab {
         return stabilised(material, geo, u, alpha, r, k);
     }
@@ -503,7 +535,7 @@ pub fn quad_residual_tangent_with(
         let res = norm4(&t.ra);
         let inv = match linear {
             Some(l) => l.kaa_inv,
-            None => kaa_inverse(&t.kaa).ok_or(ElementError::EasNotConverged(res))?,
+            None => kaa_inverse(&t.kaa).ok_or(ElementError::EasSingular)?,
         };
         let mut da = [0.0; 4];
         for (m, v) in da.iter_mut().enumerate() {

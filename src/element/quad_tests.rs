@@ -96,6 +96,32 @@ fn inverted_reference_element_is_rejected() {
     assert!(matches!(e, Err(ElementError::BadGeometry(_))));
 }
 
+#[test]
+fn a_folded_element_is_rejected_although_its_strain_is_admissible() {
+    // mirrored (x → −x): F = diag(−1, 1) everywhere, C = I: no strain, det F = −1; and
+    // folded over one corner: det F < 0 at some Gauss points only
+    let mirrored = X.map(|p| [-2.0 * p[0], 0.0]);
+    let folded = [[0.0; 2], [0.0; 2], [-1.6, -1.6], [0.0; 2]];
+    for kind in [
+        ElementKind::Q4,
+        ElementKind::Q4Eas,
+        ElementKind::Q4EasStab,
+        ElementKind::Q4EasSafe,
+    ] {
+        for m in materials() {
+            for u in [mirrored, folded] {
+                let mut a = [0.0; 4];
+                let mut r = [0.0; 8];
+                let e = quad_residual_tangent(kind, &m, &X, &u, &mut a, &mut r, None);
+                assert!(
+                    matches!(e, Err(ElementError::Inverted(d)) if d < 0.0),
+                    "{kind:?} {m:?}: {e:?}"
+                );
+            }
+        }
+    }
+}
+
 proptest! {
     /// Rigid motion (any rotation and translation) produces no internal force and no
     /// enhanced strain, for both materials and both formulations.

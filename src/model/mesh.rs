@@ -87,15 +87,19 @@ impl RectMesh {
 /// `θ_from ≤ θ ≤ θ_to` about `centre` (a curved strip: a belt lying on a cylinder), with
 /// `elements = [around, through]`. Node sets `inner`, `outer`, `start` (θ_from), `end`
 /// (θ_to), `all`; faces of the same names, each running with the body on its left (`outer`
-/// counter-clockwise, `inner` clockwise, `start` outwards, `end` inwards).
+/// counter-clockwise, `inner` clockwise, `start` outwards, `end` inwards). A full turn is a
+/// closed ring: the last column of nodes is the first (`start` and `end` name the same
+/// nodes, and there are no `start` and `end` faces), so the ring is not cut along a seam.
 pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements: [usize; 2]) -> RectMesh {
     let [na, nr] = elements;
-    let id = |i: usize, j: usize| j * (na + 1) + i;
     let (t0, t1) = (angles_deg[0].to_radians(), angles_deg[1].to_radians());
-    let mut nodes = Vec::with_capacity((na + 1) * (nr + 1));
+    let closed = ((t1 - t0).abs() - std::f64::consts::TAU).abs() < 1e-9;
+    let columns = if closed { na } else { na + 1 };
+    let id = |i: usize, j: usize| j * columns + i % columns;
+    let mut nodes = Vec::with_capacity(columns * (nr + 1));
     for j in 0..=nr {
         let r = radii[0] + (radii[1] - radii[0]) * j as f64 / nr as f64;
-        for i in 0..=na {
+        for i in 0..columns {
             let t = t0 + (t1 - t0) * i as f64 / na as f64;
             nodes.push([centre[0] + r * t.cos(), centre[1] + r * t.sin()]);
         }
@@ -111,8 +115,8 @@ pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements
         }
     }
     let mut node_sets = BTreeMap::new();
-    node_sets.insert("inner".into(), (0..=na).map(|i| id(i, 0)).collect());
-    node_sets.insert("outer".into(), (0..=na).map(|i| id(i, nr)).collect());
+    node_sets.insert("inner".into(), (0..columns).map(|i| id(i, 0)).collect());
+    node_sets.insert("outer".into(), (0..columns).map(|i| id(i, nr)).collect());
     node_sets.insert("start".into(), (0..=nr).map(|j| id(0, j)).collect());
     node_sets.insert("end".into(), (0..=nr).map(|j| id(na, j)).collect::<Vec<_>>());
     node_sets.insert("all".into(), (0..nodes.len()).collect());
@@ -126,13 +130,15 @@ pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements
     };
     let inner: Vec<[usize; 2]> = (0..na).map(|i| [id(i, 0), id(i + 1, 0)]).collect();
     let outer: Vec<[usize; 2]> = (0..na).map(|i| [id(i, nr), id(i + 1, nr)]).collect();
-    let start: Vec<[usize; 2]> = (0..nr).map(|j| [id(0, j), id(0, j + 1)]).collect();
-    let end: Vec<[usize; 2]> = (0..nr).map(|j| [id(na, j), id(na, j + 1)]).collect();
     // counter-clockwise quads: outer runs with i when ccw, start runs with j when ccw
     faces.insert("outer".into(), run(outer, ccw));
     faces.insert("inner".into(), run(inner, !ccw));
-    faces.insert("start".into(), run(start, ccw));
-    faces.insert("end".into(), run(end, !ccw));
+    if !closed {
+        let start: Vec<[usize; 2]> = (0..nr).map(|j| [id(0, j), id(0, j + 1)]).collect();
+        let end: Vec<[usize; 2]> = (0..nr).map(|j| [id(na, j), id(na, j + 1)]).collect();
+        faces.insert("start".into(), run(start, ccw));
+        faces.insert("end".into(), run(end, !ccw));
+    }
     RectMesh {
         nodes,
         quads,
@@ -168,6 +174,23 @@ mod tests {
         let last = c[5] - c[4];
         assert!((last / first - 4.0).abs() < 1e-12);
         assert!((c[5] - 10.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_full_turn_annulus_is_a_closed_ring() {
+        for angles in [[75.0, 435.0], [360.0, 0.0]] {
+            let m = annulus([0.0, 0.0], [1.0, 1.1], angles, [12, 2]);
+            assert_eq!(m.nodes.len(), 12 * 3, "{angles:?}");
+            assert_eq!(m.node_sets["start"], m.node_sets["end"]);
+            assert!(!m.faces.contains_key("start") && !m.faces.contains_key("end"));
+            // every node is used, and the outer face is a closed chain
+            let mut used = vec![false; m.nodes.len()];
+            m.quads.iter().flatten().for_each(|&n| used[n] = true);
+            assert!(used.iter().all(|u| *u));
+            let outer = &m.faces["outer"];
+            assert_eq!(outer.len(), 12);
+            assert!(outer.windows(2).all(|w| w[0][1] == w[1][0]) && outer[11][1] == outer[0][0]);
+        }
     }
 
     #[test]

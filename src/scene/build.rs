@@ -85,7 +85,7 @@ fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<V
     if nodes.is_empty() {
         return Err(cx.err(
             &b.name,
-            format!("the node selection {sel:?} on body `{}` is empty", b.name),
+            format!("the node selection {sel} on body `{}` is empty", b.name),
             "check the coordinates and `tol`",
         ));
     }

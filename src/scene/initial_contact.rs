@@ -52,24 +52,48 @@ pub fn initial_overlaps(m: &Model, allowed: &[bool]) -> Vec<InitialOverlap> {
         let mut overlap: Option<InitialOverlap> = None;
         for &slave in &pair.slaves {
             let located = pairing::locate(&cfg, pair, slave, None, false, &mut grid, 0.0).located;
-            let Some(l) = located.filter(|l| l.gap < -tol) else {
-                continue;
+            let gap = match located {
+                Some(l) => l.gap,
+                None => solid_side_gap(&cfg, pair, slave).unwrap_or(0.0),
             };
+            if gap >= -tol {
+                continue;
+            }
             let o = overlap.get_or_insert(InitialOverlap {
                 pair: ip,
                 count: 0,
                 deepest: slave,
-                gap: l.gap,
+                gap,
                 position: cfg.slave_pos(slave),
             });
             o.count += 1;
-            if l.gap < o.gap {
-                (o.deepest, o.gap, o.position) = (slave, l.gap, cfg.slave_pos(slave));
+            if gap < o.gap {
+                (o.deepest, o.gap, o.position) = (slave, gap, cfg.slave_pos(slave));
             }
         }
         out.extend(overlap);
     }
     out
+}
+
+/// The signed gap of a slave point out of the pair's reach to the nearest point of the
+/// rigid outline, when that point lies inside a piece (not at a vertex or an end, where the
+/// side is not defined): negative on the solid side. An outline listed the wrong way round
+/// while the body is still far from it puts the body on its solid side as surely as one in
+/// reach does; unrefused, the tool then sweeps through the body with no force at all.
+fn solid_side_gap(cfg: &Config, pair: &crate::model::ContactPair, slave: Slave) -> Option<f64> {
+    let rs = cfg.slave_pos(slave);
+    let dist = |p: [f64; 2]| (p[0] - rs[0]).hypot(p[1] - rs[1]);
+    let (mut best, mut nearest_end) = (None::<f64>, f64::INFINITY);
+    for seg in 0..pair.master.segment_count() {
+        let g = cfg.segment(pair, seg);
+        nearest_end = nearest_end.min(dist(g.eval(-1.0).0)).min(dist(g.eval(1.0).0));
+        let p = g.project(rs);
+        if p.xi.abs() <= 1.0 && best.is_none_or(|b| p.gap.abs() < b.abs()) {
+            best = Some(p.gap);
+        }
+    }
+    best.filter(|b| b.abs() < nearest_end)
 }
 
 /// A scene whose slave points start inside a rigid outline is refused (see

@@ -160,6 +160,29 @@ fn default_tol() -> f64 {
     1e-9
 }
 
+impl std::fmt::Display for NodeSelection {
+    /// The selection as a scene writes it: `"top"`, or `{ x = 0, box = [[0, 0], [1, 1]], tol = 1e-9 }`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NodeSelection::Named(n) => write!(f, "\"{n}\""),
+            NodeSelection::Where(w) => {
+                let mut parts = Vec::new();
+                if let Some(x) = w.x {
+                    parts.push(format!("x = {x}"));
+                }
+                if let Some(y) = w.y {
+                    parts.push(format!("y = {y}"));
+                }
+                if let Some([[x0, y0], [x1, y1]]) = w.bbox {
+                    parts.push(format!("box = [[{x0}, {y0}], [{x1}, {y1}]]"));
+                }
+                parts.push(format!("tol = {}", w.tol));
+                write!(f, "{{ {} }}", parts.join(", "))
+            }
+        }
+    }
+}
+
 /// A prescribed history: a final value reached linearly at `t = end`, or `(t, value)` knots.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(untagged)]

@@ -16,7 +16,7 @@
 //! failed verification instead, a primal–dual active-set round, was tried: on the 120×4
 //! strip at rest on the block it cycled between two active sets at the lift-off point.)
 
-use super::newton::{apply, NewtonFailure, Workspace};
+use super::newton::{apply, assemble_at, inadmissible, NewtonFailure, Workspace};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::law::ContactState;
@@ -40,6 +40,21 @@ pub struct ActiveSetWatch {
     ring: Vec<Vec<Decision>>,
     filled: usize,
     iteration: usize,
+    /// Hashes of the decision patterns met in this attempt, and whether the last one
+    /// observed was new.
+    seen: std::collections::HashSet<u64>,
+    last_new: bool,
+}
+
+/// A hash of a pattern of decisions (the points' states and segments, in order).
+fn pattern_hash(decisions: &[Decision]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for d in decisions {
+        d.state.code().hash(&mut h);
+        d.segment.hash(&mut h);
+    }
+    h.finish()
 }
 
 impl ActiveSetWatch {
@@ -59,7 +74,16 @@ impl ActiveSetWatch {
         self.ring.resize_with(KEEP, Vec::new);
         self.filled = 0;
         self.iteration = 0;
+        self.seen.clear();
+        self.seen.insert(pattern_hash(&self.now));
+        self.last_new = false;
         self.push();
+    }
+
+    /// Whether the pattern of decisions last observed had not been met before in the
+    /// attempt (a cycle meets its patterns again; a moving contact front does not).
+    pub fn new_pattern(&self) -> bool {
+        self.last_new
     }
 
     fn push(&mut self) {
@@ -90,6 +114,7 @@ impl ActiveSetWatch {
                 self.last_change[i] = iteration;
             }
         }
+        self.last_new = self.seen.insert(pattern_hash(&self.now));
         self.push();
         changed
     }
@@ -178,8 +203,10 @@ impl ActiveSetWatch {
 /// 3. **Stick as the elastic predictor** of friction: frictional points closed at the last
 ///    converged increment and closed (or held closed) now are held in stick, returning their
 ///    trial traction with the stick tangent — those that stuck at the last converged
-///    increment, and in an attempt that `retry`s an increment after a failed one, the
-///    slipping ones too (the increment in which points under a tool reverse their slip:
+///    increment, the touching points pushed in (a body coming to rest on them: without
+///    their stick stiffness a block on an incline would slide freely in its first
+///    correction, and the tangent is singular), and in an attempt that `retry`s an
+///    increment after a failed one, the slipping ones too (the increment in which points under a tool reverse their slip:
 ///    a die that stops pressing and starts dragging). At the
 ///    first iterate the rigid bodies and prescribed nodes have moved but the body has not
 ///    followed yet, so with a tangential penalty far stiffer than the body (`ε_T` = 100 E
@@ -212,7 +239,8 @@ pub fn hold_first_correction(
                 held.push(flat);
             }
             let closed = lift_off || pushed_in.contains(&flat) || state.is_some_and(|s| s != ContactState::Open);
-            if pair.law.mu > 0.0 && was.closed && closed && (was.stuck || retry) {
+            let resting = pushed_in.contains(&flat);
+            if pair.law.mu > 0.0 && closed && ((was.closed && (was.stuck || retry)) || resting) {
                 stick.push(flat);
             }
             flat += 1;
@@ -261,7 +289,8 @@ pub fn touching_points(contact: &ContactSystem) -> Vec<usize> {
 
 /// The touching points (see [`touching_points`]) that a first correction with them open
 /// pushes into their master: one linear solve and one residual assembly at the trial, then
-/// the first iterate is assembled again (nothing is done when no point touches).
+/// the first iterate is assembled again (nothing is done when no point touches). When the
+/// tangent with them open is singular, all of them (the body rests on them).
 pub(super) fn touching_pushed_in(
     model: &Model,
     asm: &mut Assembler,
@@ -277,17 +306,34 @@ pub(super) fn touching_pushed_in(
     for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
         *d = -ri;
     }
-    asm.matrix.solve(&mut ws.du)?;
+    // with the touching points open the tangent is singular (a zero pivot, or a correction
+    // that moves nodes farther than the model is large): a body held by nothing but the
+    // contacts it rests on, a block on a floor under its weight. It rests on them, so they
+    // are held closed for the first correction
+    let size = super::tangent_check::model_size(model);
+    if asm.matrix.solve(&mut ws.du).is_err() || ws.du.iter().any(|d| d.is_nan() || d.abs() > size) {
+        return Ok(touching);
+    }
+    // the probe only asks which way the correction moves the touching points; a correction
+    // whose end is inadmissible (it carries points through their master, or inverts an
+    // element) moves an unsupported body: it rests on them
+    let alphas = state.alphas.clone();
     apply(&mut state.u, &asm.dofs.eq, &ws.du, 1.0);
-    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, false)?;
-    let closed = |flat: &usize| {
-        let (ip, is) = state.contact.point_index(*flat);
-        state.contact.current[ip][is]
-            .eval
-            .is_some_and(|e| e.state != ContactState::Open)
+    let pushed: Vec<usize> = match assemble_at(model, asm, state, t, false) {
+        Ok(()) => {
+            let closed = |flat: &usize| {
+                let (ip, is) = state.contact.point_index(*flat);
+                state.contact.current[ip][is]
+                    .eval
+                    .is_some_and(|e| e.state != ContactState::Open)
+            };
+            touching.into_iter().filter(closed).collect()
+        }
+        Err(f) if inadmissible(&f) => touching,
+        Err(e) => return Err(e),
     };
-    let pushed: Vec<usize> = touching.into_iter().filter(closed).collect();
     apply(&mut state.u, &asm.dofs.eq, &ws.du, -1.0);
-    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+    state.alphas.copy_from_slice(&alphas);
+    assemble_at(model, asm, state, t, true)?;
     Ok(pushed)
 }

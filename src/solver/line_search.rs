@@ -1,7 +1,7 @@
 //! Line searches along a Newton correction `Δu`: backtracking on `‖R‖`, or regula falsi on
 //! the slope `Δu·R(u + sΔu)` where the iterate has an energy.
 
-use super::newton::{apply, norm, NewtonFailure, Workspace};
+use super::newton::{apply, assemble_at, norm, NewtonFailure, Workspace};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::model::Model;
@@ -22,7 +22,7 @@ pub(super) fn residual_backtracking(
     let mut step = 1.0;
     for _ in 0..8 {
         let full = step == 1.0 && want_tangent;
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
+        assemble_at(model, asm, state, t, full)?;
         asm.free_residual(&mut ws.r);
         let rt = norm(&ws.r);
         if rt.is_finite() && rt <= (1.0 - 1e-4 * step) * rn {
@@ -54,7 +54,7 @@ pub(super) fn slope_search(
     let mut s = 1.0;
     for _ in 0..8 {
         let full = s == 1.0 && want_tangent;
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, full)?;
+        assemble_at(model, asm, state, t, full)?;
         asm.free_residual(&mut ws.r);
         let g = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>();
         let next = if !g.is_finite() {

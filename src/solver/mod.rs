@@ -6,6 +6,7 @@ pub mod element_check;
 mod line_search;
 pub mod monitor;
 pub mod newton;
+pub mod penetration;
 pub mod run;
 pub mod state;
 mod stepping;

@@ -5,6 +5,7 @@ use super::active_set::{hold_first_correction, touching_pushed_in, ActiveSetWatc
 use super::line_search::{residual_backtracking, slope_search};
 use super::state::TrialState;
 use crate::assembly::{Assembler, AssemblyError};
+use crate::contact::law::ContactState;
 use crate::linalg::sparse::LinearError;
 use crate::model::Model;
 use crate::record::{FailureKind, IterationRecord};
@@ -23,6 +24,12 @@ pub enum NewtonFailure {
     Diverged { residual: f64 },
     #[error("non-finite residual")]
     NonFinite,
+    #[error(
+        "{points} contact points passed through their master within one Newton step ({first}): deeper inside it \
+         than the search radius, where a point cannot be told from one beyond a thin body's far side; raise the \
+         pair's search_radius if penetrations that deep are meant (a soft eps_n), otherwise a smaller step avoids it"
+    )]
+    Tunnelled { points: usize, first: String },
     #[error(
         "augmented Lagrangian of pair `{pair}` not converged after {updates} multiplier updates: the \
          multipliers still change by {relative:.2e} of the pair's largest normal force (augmented_tol = {tol:.1e}); \
@@ -51,6 +58,7 @@ impl NewtonFailure {
             }
             NewtonFailure::Diverged { .. } => FailureKind::Diverged,
             NewtonFailure::NonFinite => FailureKind::NonFinite,
+            NewtonFailure::Tunnelled { .. } => FailureKind::LostContact,
             NewtonFailure::Element(_) => FailureKind::InvertedElement,
             NewtonFailure::Linear(_) => FailureKind::LinearSolver,
         }
@@ -67,6 +75,35 @@ pub struct Converged {
     pub frozen: usize,
     /// Multiplier updates of augmented-Lagrangian pairs (each one more solve).
     pub augmentations: usize,
+}
+
+/// Assemble residual (and tangent if `with_tangent`) at `state`, refusing a state in which
+/// contact points passed through their master ([`crate::contact::system::ContactSystem::tunnelled`]).
+pub(super) fn assemble_at(
+    model: &Model,
+    asm: &mut Assembler,
+    state: &mut TrialState,
+    t: f64,
+    with_tangent: bool,
+) -> Result<(), NewtonFailure> {
+    asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, with_tangent)?;
+    match state.contact.tunnelled() {
+        [] => Ok(()),
+        through @ [(ip, is), ..] => {
+            let pair = &model.contacts[*ip];
+            Err(NewtonFailure::Tunnelled {
+                points: through.len(),
+                first: format!("{} of `{}`", model.slave_label(pair.slaves[*is]), pair.name),
+            })
+        }
+    }
+}
+
+/// Whether a failure says the iterate just reached is inadmissible (an element inverted or
+/// without enhanced-strain equilibrium, or contact points through their master): a shorter
+/// step along the same correction may not be.
+pub(super) fn inadmissible(f: &NewtonFailure) -> bool {
+    matches!(f, NewtonFailure::Element(_) | NewtonFailure::Tunnelled { .. })
 }
 
 /// Norm of the reactions (internal forces at prescribed DOFs) and of the applied loads.
@@ -88,7 +125,17 @@ pub struct Workspace {
     pub residuals: Vec<f64>,
     /// The active-set history of the last attempt.
     pub watch: ActiveSetWatch,
+    /// The iterate before the last correction (displacements and enhanced-strain
+    /// parameters), to shorten a correction that inverts an element.
+    u_before: Vec<f64>,
+    alphas_before: Vec<[f64; 4]>,
+    /// Per point, the direction of its slip at the last iterate (0: not slipping).
+    slip_sign: Vec<i8>,
 }
+
+/// How many times a Newton correction is halved when its end inverts an element (or an
+/// element's enhanced strains find no equilibrium there) before the attempt fails.
+pub const MAX_INADMISSIBLE_HALVINGS: usize = 12;
 
 /// Which increment is solved, to what time, and from what start.
 #[derive(Debug, Clone, Copy)]
@@ -129,16 +176,18 @@ pub fn solve_increment(
     ws: &mut Workspace,
 ) -> Result<Converged, NewtonFailure> {
     let mut it = Iterate::start(model, settings, asm, state, target, ws)?;
-    for k in 0..=settings.max_iterations {
+    for k in 0.. {
         it.assemble_if_needed()?;
+        it.hold_reversing_slip()?;
         if let Some(converged) = it.test_convergence(k)? {
             return Ok(converged);
         }
-        if k == settings.max_iterations {
+        if k >= it.budget() {
             break;
         }
         let (energy, step, reuse) = it.correct(k)?;
         let changes = it.watch_active_set(k, reuse);
+        it.count_settling(changes);
         let keep_going = record(IterationRecord {
             increment: target.increment,
             attempt: target.attempt,
@@ -180,6 +229,17 @@ struct Iterate<'a> {
     verified_once: bool,
     /// What the assembler holds at the current iterate.
     assembled: Assembled,
+    /// Iterations that left the active set in a pattern not met before in the attempt while
+    /// the residual still reached new lows (see [`NewtonSettings::max_settling_iterations`]).
+    settling: usize,
+    /// The halving of the last correction when its end turned out inadmissible.
+    shortened: f64,
+    /// First residual of the current run of free iterations (after a failed verification).
+    settling_from: usize,
+    /// The attempt starts from an extrapolated state: it gets no settling iterations (when
+    /// it does not converge within `max_iterations` the increment is retried from the
+    /// converged state, which settles from where it truly is).
+    predicted: bool,
 }
 
 impl<'a> Iterate<'a> {
@@ -195,6 +255,8 @@ impl<'a> Iterate<'a> {
     ) -> Result<Self, NewtonFailure> {
         ws.residuals.clear();
         ws.held.clear();
+        ws.u_before.clear();
+        ws.slip_sign.clear();
         for p in &model.prescribed {
             state.u[p.dof] = p.ramp.at(target.t);
         }
@@ -202,7 +264,7 @@ impl<'a> Iterate<'a> {
         ws.r.resize(n, 0.0);
         ws.du.resize(n, 0.0);
         let t = target.t;
-        asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+        assemble_at(model, asm, state, t, true)?;
         let retry = target.attempt > 0 && !target.predicted;
         let pushed_in = touching_pushed_in(model, asm, state, t, ws)?;
         let held = hold_first_correction(
@@ -213,7 +275,7 @@ impl<'a> Iterate<'a> {
             &mut ws.held,
         );
         if held > 0 {
-            asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)?;
+            assemble_at(model, asm, state, t, true)?;
         }
         ws.watch.start(&state.contact);
         ws.frozen.clear();
@@ -235,22 +297,126 @@ impl<'a> Iterate<'a> {
             freezing: settings.freeze_after > 0,
             verified_once: false,
             assembled: Assembled::Full,
+            settling: 0,
+            shortened: 1.0,
+            settling_from: 0,
+            predicted: target.predicted,
         })
     }
 
+    /// How many corrections the attempt may make: `max_iterations`, plus one for each
+    /// iteration in which the active set was still settling (at most
+    /// `max_settling_iterations` more; none from a predicted start).
+    fn budget(&self) -> usize {
+        let settling = if self.predicted { 0 } else { self.settling };
+        self.settings.max_iterations + settling.min(self.settings.max_settling_iterations)
+    }
+
+    /// Count the iteration just made as settling when it changed the active set into a
+    /// pattern not met before in the attempt and the residual is still falling: the lowest
+    /// of the last `max_iterations` iterates is below the lowest of the `max_iterations`
+    /// before them (a front moving along the contact zone, not a cycle and not a drift
+    /// without progress).
+    fn count_settling(&mut self, changes: usize) {
+        // a failed verification of frozen points starts the comparison afresh (the frozen
+        // state's residual was not one of the free problem)
+        let r = &self.ws.residuals[self.settling_from..];
+        let window = self.settings.max_iterations.max(1);
+        let falling = r.len() <= window || {
+            let (before, recent) = r.split_at(r.len() - window);
+            let before = &before[before.len().saturating_sub(window)..];
+            let low = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+            low(recent) < low(before)
+        };
+        if changes > 0 && self.ws.watch.new_pattern() && falling {
+            self.settling += 1;
+        }
+    }
+
     fn assemble(&mut self, with_tangent: bool) -> Result<(), NewtonFailure> {
-        let s = &mut *self.state;
-        self.asm
-            .assemble(self.model, &s.u, self.t, &mut s.alphas, &mut s.contact, with_tangent)?;
-        Ok(())
+        assemble_at(self.model, self.asm, self.state, self.t, with_tangent)
     }
 
     /// Residual and tangent at the iterate, unless a line search's full-step trial left them.
+    /// An iterate just reached by a correction that inverts an element is pulled back
+    /// along the correction (see [`Self::shorten`]).
     fn assemble_if_needed(&mut self) -> Result<(), NewtonFailure> {
         if self.assembled == Assembled::Nothing {
-            self.assemble(true)?;
+            loop {
+                match self.assemble(true) {
+                    Ok(()) => break,
+                    // (no correction to shorten when the iterate was not reached by one)
+                    Err(f) if inadmissible(&f) && self.ws.u_before.len() == self.state.u.len() => self.shorten(f)?,
+                    Err(e) => return Err(e),
+                }
+            }
             self.assembled = Assembled::Full;
         }
+        Ok(())
+    }
+
+    /// Points whose slip reversed since the last iterate are held in stick for the next
+    /// correction (then assembled again): the elastic predictor of the attempt's start,
+    /// applied where it is needed again. A point whose anchor lies between two iterates —
+    /// at rest under a small normal force, or where the motion reverses — is taken in slip
+    /// with no tangential stiffness, the body's response carries it past the anchor, the
+    /// trial reverses, and Newton alternates between the two slip directions for ever (the
+    /// decisions, slip and slip, never change, so no cycle is seen). With stick held the
+    /// correction brings it to its stick equilibrium, and the return mapping decides again
+    /// from there (the held points are released after the correction and verified at
+    /// convergence like frozen ones).
+    fn hold_reversing_slip(&mut self) -> Result<(), NewtonFailure> {
+        let ws = &mut *self.ws;
+        let n = self.state.contact.signature_len();
+        ws.slip_sign.resize(n, 0);
+        let mut reversed = Vec::new();
+        let signs = self
+            .state
+            .contact
+            .current
+            .iter()
+            .zip(&self.model.contacts)
+            .flat_map(|(pts, pair)| {
+                pts.iter().map(move |p| match p.eval {
+                    Some(e) if pair.law.mu > 0.0 && e.state == ContactState::Slip && e.t1 != 0.0 => e.t1.signum() as i8,
+                    _ => 0,
+                })
+            });
+        for (flat, (now, before)) in signs.zip(ws.slip_sign.iter_mut()).enumerate() {
+            if now != 0 && *before == -now {
+                reversed.push(flat);
+            }
+            *before = now;
+        }
+        if reversed.is_empty() {
+            return Ok(());
+        }
+        for &flat in &reversed {
+            self.state.contact.hold_stick(flat);
+        }
+        self.ws.held.extend(reversed);
+        self.assemble(true)?;
+        self.assembled = Assembled::Full;
+        Ok(())
+    }
+
+    /// The end of the last correction is inadmissible (an element inverted, or its enhanced
+    /// strains found no equilibrium, or contact points went through their master): go back to the iterate before it and take half the
+    /// correction. A Newton step is a prediction from the tangent at its start, and a
+    /// prediction far beyond where that tangent holds — a soft body under a stiff penalty
+    /// pushed through by one node's contact force — says nothing about the solution; the
+    /// solution itself is admissible, so a shorter step toward it is too. Fails with the
+    /// element's error after [`MAX_INADMISSIBLE_HALVINGS`] halvings.
+    fn shorten(&mut self, failure: NewtonFailure) -> Result<(), NewtonFailure> {
+        if self.shortened < 0.5f64.powi(MAX_INADMISSIBLE_HALVINGS as i32 - 1) {
+            return Err(failure);
+        }
+        let ws = &mut *self.ws;
+        self.state.u.copy_from_slice(&ws.u_before);
+        self.state.alphas.copy_from_slice(&ws.alphas_before);
+        ws.du.iter_mut().for_each(|d| *d *= 0.5);
+        self.shortened *= 0.5;
+        apply(&mut self.state.u, &self.asm.dofs.eq, &ws.du, 1.0);
         Ok(())
     }
 
@@ -314,6 +480,7 @@ impl<'a> Iterate<'a> {
             return Err(NewtonFailure::FrozenNotVerified { residual: rv });
         }
         self.state.contact.unfreeze();
+        self.settling_from = self.ws.residuals.len();
         self.verified_once = true;
         self.freezing = false;
         self.e0 = 0.0;
@@ -338,6 +505,9 @@ impl<'a> Iterate<'a> {
             self.e0 = energy;
         }
         self.e_last = energy;
+        ws.u_before.clone_from(&self.state.u);
+        ws.alphas_before.clone_from(&self.state.alphas);
+        self.shortened = 1.0;
         apply(&mut self.state.u, &self.asm.dofs.eq, &ws.du, 1.0);
         // the held points are free again once the first correction is computed: the line
         // search's trials (and so the next iterate) are assembled with their own state;
@@ -348,12 +518,17 @@ impl<'a> Iterate<'a> {
         for flat in ws.held.drain(..) {
             self.state.contact.release(flat);
         }
-        let (step, reuse) = if !self.settings.line_search || elastic_predictor {
-            (1.0, None)
-        } else {
-            self.line_search(k)?
-        };
-        Ok((energy, step, reuse))
+        if !self.settings.line_search || elastic_predictor {
+            // the iterate is assembled (and shortened if inadmissible) at the next iteration
+            return Ok((energy, 1.0, None));
+        }
+        loop {
+            match self.line_search(k) {
+                Ok((step, reuse)) => return Ok((energy, step * self.shortened, reuse)),
+                Err(f) if inadmissible(&f) => self.shorten(f)?,
+                Err(e) => return Err(e),
+            }
+        }
     }
 
     /// Will the full step converge? Then its trial needs no tangent (one fewer per

@@ -79,6 +79,9 @@ pub struct RunSummary {
     /// [`super::element_check`]): the first such increment, the most at one increment and
     /// the worst element seen.
     pub unstable_elements: Option<UnstableSummary>,
+    /// The deepest penetration of the run relative to the local element size, when some
+    /// converged increment exceeded [`super::penetration::DEEP_PENETRATION`].
+    pub deep_penetration: Option<super::penetration::Penetration>,
 }
 
 /// Where and how many elements lost stability in a run.

@@ -33,13 +33,21 @@ fn check_elements(
     };
     if unstable.len() != *last_count && !unstable.is_empty() {
         let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
+        let safe = unstable
+            .iter()
+            .all(|e| model.bodies[model.elements[e.element].body].kind == crate::element::quad::ElementKind::Q4EasSafe);
+        let remedy = if safe {
+            "the elements are already `q4-eas-safe`: they are deformed beyond what one element resolves (refine the mesh where they are)"
+        } else {
+            "the element kind `q4-eas-safe` (the default) does not hourglass in compression"
+        };
         log(
             obs,
             LogLevel::Warning,
             increment,
             t,
             format!(
-                "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; the element kind `q4-eas-safe` (the default) does not hourglass",
+                "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; {remedy}",
                 unstable.len(),
                 names.join(", "),
                 if unstable.len() > 5 { ", …" } else { "" }
@@ -149,6 +157,8 @@ struct Stepping<'a> {
     recording: std::time::Duration,
     /// Unstable elements at the last converged increment.
     unstable_count: usize,
+    /// The smallest element edge at each node (the scale of a penetration).
+    node_sizes: Vec<f64>,
 }
 
 impl<'a> Stepping<'a> {
@@ -157,12 +167,19 @@ impl<'a> Stepping<'a> {
         let nominal = st.end / st.increments.max(1) as f64;
         let mut asm = Assembler::new(model);
         asm.matrix.set_solver(settings.newton.linear_solver);
+        let mut committed = TrialState::new(model);
+        let start = Config {
+            model,
+            u: &committed.u,
+            t: 0.0,
+        };
+        committed.contact.start_from_initial_configuration(&start);
         Stepping {
             model,
             settings,
             asm,
             ws: Workspace::default(),
-            committed: TrialState::new(model),
+            committed,
             labels: crate::record::ContactLabels::new(model),
             summary: RunSummary::default(),
             increment: 0,
@@ -175,6 +192,7 @@ impl<'a> Stepping<'a> {
             last_dt: None,
             recording: std::time::Duration::ZERO,
             unstable_count: 0,
+            node_sizes: super::penetration::node_sizes(model),
         }
     }
 
@@ -354,6 +372,7 @@ impl<'a> Stepping<'a> {
         self.summary.augmentations += done.conv.augmentations;
         let handed = Instant::now();
         let (points, monitors, crossings, commit_time) = self.commit_contact();
+        self.check_penetration(&points, obs)?;
         self.summary.crossings += crossings.len();
         let rec = IncrementRecord {
             increment: self.increment,
@@ -420,6 +439,27 @@ impl<'a> Stepping<'a> {
         let commit_time = committing.elapsed();
         let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
         (points, monitors, crossings, commit_time)
+    }
+
+    /// Warn the first time a converged increment penetrates deeper than
+    /// [`super::penetration::DEEP_PENETRATION`] of the local element size, and keep the
+    /// deepest for the run's summary.
+    fn check_penetration(&mut self, points: &[ContactPointRecord], obs: &mut dyn Observer) -> Result<(), SolveError> {
+        use super::penetration::{deepest, warning, DEEP_PENETRATION};
+        let Some(p) = deepest(self.model, &self.node_sizes, points) else {
+            return Ok(());
+        };
+        if p.ratio <= DEEP_PENETRATION {
+            return Ok(());
+        }
+        let first = self.summary.deep_penetration.is_none();
+        if first {
+            log(obs, LogLevel::Warning, self.increment, self.t, warning(&p))?;
+        }
+        if self.summary.deep_penetration.as_ref().is_none_or(|w| p.ratio > w.ratio) {
+            self.summary.deep_penetration = Some(p);
+        }
+        Ok(())
     }
 
     /// Sum of the reactions at the prescribed DOFs, per direction.

@@ -1,0 +1,62 @@
+//! A rigid point driven through a thin plate: the contact must not be lost silently.
+//!
+//! ```text
+//!            ● P (0.5, 0.01), driven 0.21 down in one increment
+//!   ┌────────────────────────────┐ y = 0     plate 1 × 0.1, 40 × 4 elements, E = 1e3,
+//!   └────────────────────────────┘ y = −0.1  fixed at its bottom; ε_N = 1e4
+//! ```
+//! Scene `tests/data/point-through-plate.toml`. The search radius is twice the largest
+//! element edge (0.05): deeper inside the plate than that, a point cannot be told from one
+//! beyond its far side, and the pairing drops it.
+//!
+//! Reference: the motion cannot be balanced by the plate (it would have to be squashed to
+//! less than nothing), so the run must not complete with the point through the plate and
+//! no force on it — what it did before: one increment, zero Newton iterations, force 0,
+//! exit 0. Remedy: a point paired at the previous iterate (or, at the first iterate, at
+//! the last converged increment or in the initial configuration) that is found deeper
+//! inside its master than the search radius has passed through it; such an iterate is
+//! inadmissible (a Newton correction is shortened, the start of an increment cut back).
+//! Asserted: the run fails and its log names the point that passed through; a motion the
+//! plate can take (0.03 down, 0.02 into the plate) completes with a positive force.
+
+mod common;
+
+const SCENE: &str = include_str!("data/point-through-plate.toml");
+
+fn run(
+    sets: &[&str],
+) -> (
+    Result<contrail::solver::RunSummary, contrail::solver::SolveError>,
+    contrail::record::Memory,
+) {
+    let src = contrail::scene::SceneSource {
+        origin: "tests/data/point-through-plate.toml".into(),
+        text: SCENE.into(),
+    };
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
+    common::solve(&contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}")))
+}
+
+#[test]
+fn point_driven_through_a_plate_is_not_lost_silently() {
+    let (r, m) = run(&[]);
+    assert!(
+        r.is_err(),
+        "the run completed: {:?}",
+        m.increments.last().map(|i| &i.monitor)
+    );
+    let named = m
+        .logs
+        .iter()
+        .any(|l| l.message.contains("passed through their master") && l.message.contains("rigid P of `point`"));
+    assert!(named, "{:#?}", m.logs.iter().map(|l| &l.message).collect::<Vec<_>>());
+}
+
+#[test]
+fn point_pressed_within_reach_completes_with_a_force() {
+    let (r, m) = run(&["rigid.P.move.y=[[0.0, 0.0], [1.0, -0.03]]"]);
+    r.unwrap_or_else(|e| panic!("{e}"));
+    let f = m.increments.last().unwrap().monitor.as_ref().unwrap().force;
+    assert!(f > 0.0, "{f}");
+}
