@@ -45,7 +45,7 @@ fn bench(c: &mut Criterion) {
                 asm.assemble(&m, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
                     .unwrap();
                 asm.free_residual(&mut r);
-                asm.matrix.solve(&mut r).unwrap();
+                asm.solve(&mut r).unwrap();
             })
         });
     }

@@ -6,8 +6,8 @@
 //! counts the compression and batcher threads in full and gives steadier ratios.
 
 use contrail::problem::Problem;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
-use contrail::record::rerun_sink::{self, RerunSink, RerunTargets};
+use contrail::record::mcap::sink::{ChunkCompression, McapOptions, McapSink};
+use contrail::record::rrd::sink::{self, RerunSink, RerunTargets};
 use contrail::record::{Observer, RunInfo};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::io::BufWriter;

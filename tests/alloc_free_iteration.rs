@@ -18,7 +18,7 @@ mod common;
 
 use contrail::assembly::Assembler;
 use contrail::contact::law::ContactState;
-use contrail::linalg::sparse::LinearSolver;
+use contrail::linalg::chooser::LinearSolver;
 use contrail::solver::newton::{solve_increment, IncrementTarget, Workspace};
 use contrail::solver::state::TrialState;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -54,7 +54,7 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
     let model = &problem.model;
     let mut asm = Assembler::new(model);
     if let Some(s) = solver {
-        asm.matrix.set_solver(s);
+        asm.linear.set_solver(s);
     }
     let mut state = TrialState::new(model);
     let mut ws = Workspace::default();
@@ -96,7 +96,7 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
         asm.assemble(model, &state.u, t, &mut state.alphas, &mut state.contact, true)
             .unwrap();
         asm.free_residual(&mut r);
-        asm.matrix.solve(&mut r).unwrap();
+        asm.solve(&mut r).unwrap();
     }
     let made = ALLOCATIONS.load(Ordering::Relaxed) - before;
     let parallel = asm.is_parallel();
@@ -128,7 +128,7 @@ fn steady_state_newton_iterations_allocate_nothing() {
 
     // the symmetric factorisation (frictionless: the tangent is symmetric)
     let (made, _, asm) = allocations_in_steady_state("[48,2]", "0", Some(LinearSolver::General));
-    let stats = asm.matrix.ldlt_stats();
+    let stats = asm.linear.ldlt_stats();
     assert!(stats.solves >= 20 && stats.fallbacks == 0, "LDLT used: {stats:?}");
     assert_eq!(made, 0, "allocations in 20 steady-state iterations (LDLT)");
 }

@@ -80,7 +80,7 @@ fn hertz_half_width_and_peak_pressure() {
 #[test]
 fn hertz_pressure_profile_follows_p0_sqrt_1_minus_x2_over_a2() {
     use contrail::analysis::recording::Recording;
-    use contrail::record::mcap_sink::{McapOptions, McapSink};
+    use contrail::record::mcap::sink::{McapOptions, McapSink};
     let m = common::scene("hertz", &["body.block.mesh.elements=[40, 30]"]);
     let src = contrail::scene::SceneSource::resolve("hertz").unwrap();
     let info = contrail::run_info(&src, &[], &m);

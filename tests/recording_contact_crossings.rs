@@ -9,7 +9,7 @@
 //! taken before the commit).
 
 use contrail::analysis::recording::Recording;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
+use contrail::record::mcap::sink::{McapOptions, McapSink};
 use std::io::Cursor;
 use std::sync::atomic::AtomicBool;
 

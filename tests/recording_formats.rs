@@ -13,8 +13,8 @@ use contrail::analysis::convert::{convert, ConvertOptions};
 use contrail::analysis::diff::{diff, Align};
 use contrail::analysis::inspect::inspect;
 use contrail::analysis::recording::Recording;
-use contrail::record::mcap_out::{ChunkCompression, Compression};
-use contrail::record::mcap_sink::SceneEvery;
+use contrail::record::mcap::out::{ChunkCompression, Compression};
+use contrail::record::mcap::sink::SceneEvery;
 use std::io::Cursor;
 use std::path::PathBuf;
 

@@ -11,7 +11,7 @@
 
 use contrail::analysis::diff::{diff, Align, DiffReport};
 use contrail::analysis::recording::Recording;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
+use contrail::record::mcap::sink::{ChunkCompression, McapOptions, McapSink};
 use std::io::Cursor;
 use std::path::PathBuf;
 use std::sync::atomic::AtomicBool;

@@ -7,7 +7,7 @@ use contrail::analysis::recording::{Recording, RecordingError};
 use contrail::analysis::recover::{recover, RECOVERED};
 use contrail::model::Model;
 use contrail::problem::Problem;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink};
+use contrail::record::mcap::sink::{ChunkCompression, McapOptions, McapSink};
 use contrail::record::{Observer, Outcome, RunInfo};
 use std::io::{Cursor, Seek, SeekFrom, Write};
 use std::sync::atomic::AtomicBool;

@@ -2,7 +2,7 @@
 //! increments get a Foxglove scene, and whether slave nodes out of reach are left out.
 
 use contrail::analysis::recording::Recording;
-use contrail::record::mcap_sink::{Iterations, McapOptions, McapSink, SceneEvery};
+use contrail::record::mcap::sink::{Iterations, McapOptions, McapSink, SceneEvery};
 use contrail::record::{Fanout, Memory};
 use std::collections::BTreeMap;
 use std::io::Cursor;

@@ -5,8 +5,8 @@ use contrail::analysis::diff::{diff, Align};
 use contrail::analysis::inspect::inspect;
 use contrail::analysis::recording::Recording;
 use contrail::problem::Problem;
-use contrail::record::mcap_sink::{McapOptions, McapSink};
-use contrail::record::rerun_sink::{self, RerunSink, RerunTargets, RerunView};
+use contrail::record::mcap::sink::{McapOptions, McapSink};
+use contrail::record::rrd::sink::{self, RerunSink, RerunTargets, RerunView};
 use contrail::record::{
     ContactPointRecord, Fanout, IterationRecord, Memory, Observer, ObserverError, Outcome, RunInfo,
 };

@@ -3,7 +3,7 @@
 //! `CONTRAIL_BLESS=1 cargo test --test recording_schemas`. The schemas of format 2 stay in
 //! `schemas/format2/` for older recordings.
 
-use contrail::record::schemas::{self, CHANNELS};
+use contrail::record::mcap::schemas::{self, CHANNELS};
 use std::path::Path;
 
 #[test]

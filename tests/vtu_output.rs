@@ -10,7 +10,7 @@
 mod common;
 
 use base64::Engine;
-use contrail::record::vtu_sink::VtuSink;
+use contrail::record::vtu::sink::VtuSink;
 use contrail::record::{Fanout, Memory, Observer};
 use std::sync::atomic::AtomicBool;
 

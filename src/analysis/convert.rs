@@ -7,13 +7,13 @@
 //! coordinates).
 
 use super::recording::Recording;
-use crate::record::format3::Format3Writer;
-use crate::record::foxglove::{ScenePoint, SceneView};
-use crate::record::mcap_out::{Clock, Compression, McapOut, OutError};
-use crate::record::mcap_sink::SceneEvery;
+use crate::record::mcap::format3::Format3Writer;
+use crate::record::mcap::foxglove::{ScenePoint, SceneView};
+use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
+use crate::record::mcap::sink::SceneEvery;
 use crate::record::messages::CrossingMessageRef;
 use crate::record::pressure::PressureRecord;
-use crate::record::schemas;
+use crate::record::mcap::schemas;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 

@@ -1,5 +1,5 @@
 //! `contrail export FILE.mcap --vtu DIR`: the VTU series of a recording (the format of
-//! [`crate::record::vtu`]), for every increment that has `/positions` (all of them, or every
+//! [`crate::record::vtu::file`]), for every increment that has `/positions` (all of them, or every
 //! N-th and the last with `run --positions-every N`).
 //!
 //! The recording holds the reference mesh, the current positions and the contact points, but
@@ -9,8 +9,8 @@
 
 use super::recording::Recording;
 use crate::model::Model;
-use crate::record::vtu::{contact_piece, mesh_piece};
-use crate::record::vtu_sink::{model_piece, VtuSeries};
+use crate::record::vtu::file::{contact_piece, mesh_piece};
+use crate::record::vtu::sink::{model_piece, VtuSeries};
 use std::io;
 use std::path::Path;
 

@@ -4,10 +4,10 @@
 
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
-use crate::record::arrays::{ContactArrays, PressureArrays};
+use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
-use crate::record::schemas;
+use crate::record::mcap::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
 use mcap::records::Record;
 use serde::de::DeserializeOwned;
@@ -227,7 +227,7 @@ impl Recording {
 }
 
 /// Put back the `/contact` records a version-2 or -3 recording leaves out (see
-/// [`crate::record::mcap_sink::OutOfReach`]): in each increment with a `/positions`
+/// [`crate::record::mcap::sink::OutOfReach`]): in each increment with a `/positions`
 /// message, a node slave whose last record was out of reach and that has none is out of
 /// reach still; its record is the last one with the node's current position and no
 /// previous segment. The points of each increment are kept in pair and slave order.
@@ -251,7 +251,7 @@ fn restore_out_of_reach(contact: &mut BTreeMap<usize, Vec<ContactPointRecord>>, 
         let Some(pos) = here else { continue };
         let mut added = false;
         for (key, l) in last.iter_mut() {
-            let Some(node) = crate::record::mcap_sink::node_of_label(&l.slave_label) else {
+            let Some(node) = crate::record::mcap::sink::node_of_label(&l.slave_label) else {
                 continue;
             };
             if l.segment.is_some() || node >= pos.nodes.len() || present.contains(key) {

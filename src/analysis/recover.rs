@@ -12,7 +12,7 @@
 
 use super::chunks::{expand, split};
 use crate::record::atomic_file::{FirstError, Guarded};
-use crate::record::schemas::{self, CHANNELS};
+use crate::record::mcap::schemas::{self, CHANNELS};
 use crate::record::{IncrementRecord, Outcome};
 use mcap::records::{op, MessageHeader, Metadata, Record};
 use std::collections::{BTreeMap, HashMap};

@@ -6,7 +6,7 @@
 
 use super::recording::Builder;
 use crate::record::messages::ModelRecord;
-use crate::record::schemas;
+use crate::record::mcap::schemas;
 
 /// Largest increment number accepted (a run of more increments would not fit in a file).
 pub const MAX_INCREMENT: usize = u32::MAX as usize;

@@ -6,6 +6,8 @@ pub mod helper;
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
 use crate::element::quad::{quad_residual_tangent_with, ElementError, QuadGeometry};
+use crate::linalg::chooser::LinearSolve;
+use crate::linalg::factorization::LinearError;
 use crate::linalg::sparse::SparseMatrix;
 use crate::model::Model;
 use std::time::{Duration, Instant};
@@ -94,10 +96,12 @@ pub struct AssemblyError {
     pub source: ElementError,
 }
 
-/// Owns the sparse tangent and the scatter maps.
+/// Owns the sparse tangent, its linear solves and the scatter maps.
 pub struct Assembler {
     pub dofs: DofMap,
     pub matrix: SparseMatrix,
+    /// The factorisations of the tangent (chosen by the `linear_solver` setting).
+    pub linear: LinearSolve,
     /// Value index of each element-matrix entry (row-major 8×8), `NONE` where prescribed.
     elem_slots: Vec<[u32; 64]>,
     /// Full residual `f_int + f_contact − f_ext` over all DOFs (reactions at prescribed DOFs).
@@ -181,8 +185,9 @@ impl Assembler {
             .elements
             .iter()
             .map(|el| element_eqs(&dofs, &el.nodes).iter().flatten().copied().collect());
-        let mut matrix = SparseMatrix::new(dofs.n_free, &mut groups);
-        matrix.set_nodes(
+        let matrix = SparseMatrix::new(dofs.n_free, &mut groups);
+        let mut linear = LinearSolve::default();
+        linear.set_nodes(
             model
                 .nodes
                 .iter()
@@ -193,6 +198,7 @@ impl Assembler {
         let mut a = Assembler {
             dofs,
             matrix,
+            linear,
             elem_slots: Vec::new(),
             r_full: vec![0.0; model.dof_count()],
             r_abs: vec![0.0; model.dof_count()],
@@ -482,11 +488,16 @@ impl Assembler {
         Ok(())
     }
 
+    /// Solve `K x = b` in place with the assembled tangent.
+    pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
+        self.linear.solve(&self.matrix, b)
+    }
+
     /// Return the matrix to the elements' pattern when the entries contact added to it were
     /// not written since the last call (see [`SparseMatrix::shrink_unused_extension`]); called
     /// once per increment. Returns whether the pattern changed.
     pub fn shrink_unused_contact_pattern(&mut self, model: &Model) -> bool {
-        let changed = self.matrix.shrink_unused_extension();
+        let changed = self.matrix.shrink_unused_extension(self.linear.banded());
         if changed {
             self.build_slots(model);
         }
@@ -511,9 +522,9 @@ impl Assembler {
     /// The assembly timings with the matrix's factorisation and solve times.
     pub fn timings(&self) -> Timings {
         Timings {
-            factorization: self.matrix.factor_time,
-            solve: self.matrix.solve_time,
-            factorizations: self.matrix.factorizations,
+            factorization: self.linear.times.factor_time,
+            solve: self.linear.times.solve_time,
+            factorizations: self.linear.times.factorizations,
             ..self.timings
         }
     }

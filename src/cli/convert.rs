@@ -6,7 +6,7 @@ use super::BadInput;
 use contrail::analysis::convert::{convert as rewrite, ConvertOptions};
 use contrail::analysis::recording::Recording;
 use contrail::record::atomic_file::AtomicFile;
-use contrail::record::mcap_out::{ChunkCompression, Compression};
+use contrail::record::mcap::out::{ChunkCompression, Compression};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -52,7 +52,7 @@ pub fn convert(a: ConvertArgs) -> anyhow::Result<ExitCode> {
     outln!(
         "converted    {name} (format {} → {})",
         rep.from_version,
-        contrail::record::schemas::FORMAT_VERSION
+        contrail::record::mcap::schemas::FORMAT_VERSION
     )?;
     outln!("increments   {}, {} Foxglove scenes", rep.increments, rep.scenes)?;
     outln!("written      {}", a.new.display())?;

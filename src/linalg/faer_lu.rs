@@ -2,7 +2,7 @@
 //! symbolic analysis, numeric storage and workspace are kept across
 //! factorisations, so that refactorising allocates nothing once the pattern is fixed.
 
-use super::sparse::LinearError;
+use super::factorization::LinearError;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};

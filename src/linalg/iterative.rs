@@ -10,7 +10,7 @@
 //! current tangent, the coarse levels are kept while the extra Krylov iterations they cost,
 //! summed since the last build, take less time than a build did. A solve that does not
 //! converge with a kept hierarchy is retried with a new one; one that fails with a fresh
-//! hierarchy is reported, and the caller ([`super::sparse::SparseMatrix::solve`]) falls back to
+//! hierarchy is reported, and the caller ([`super::chooser::LinearSolve::solve`]) falls back to
 //! the direct LU.
 
 use super::aggregation::MeshNode;
@@ -86,6 +86,8 @@ pub struct IterativePlan {
     x: Mat<f64>,
     b: Mat<f64>,
     pub stats: IterativeStats,
+    /// Time spent setting up the multigrid hierarchy in the last solve.
+    pub last_setup: Duration,
 }
 
 /// The tangent as a faer operator.
@@ -209,6 +211,7 @@ impl IterativePlan {
             x: Mat::zeros(n, 1),
             b: Mat::zeros(n, 1),
             stats: IterativeStats::default(),
+            last_setup: Duration::ZERO,
         }
     }
 
@@ -364,12 +367,13 @@ impl IterativePlan {
 
 #[cfg(test)]
 mod tests {
-    use super::super::sparse::{quad_grid_groups, LinearSolver, SparseMatrix};
+    use super::super::chooser::{quad_grid_groups, LinearSolve, LinearSolver};
+    use super::super::sparse::SparseMatrix;
 
     /// An `nx × ny` grid of 4-node cells with 2 unknowns per node and symmetric positive
     /// definite values (each cell adds `k (e eᵀ) + I/8`-like couplings), solved by the
     /// iterative and the direct solver.
-    fn grid_system(nx: usize, ny: usize, unsymmetric: f64) -> (SparseMatrix, Vec<f64>) {
+    fn grid_system(nx: usize, ny: usize, unsymmetric: f64) -> (SparseMatrix, LinearSolve, Vec<f64>) {
         let groups = quad_grid_groups(nx, ny);
         // the left edge fixed: its unknowns are not equations (renumber the others)
         let nn = (nx + 1) * (ny + 1);
@@ -408,24 +412,25 @@ mod tests {
                 )
             })
             .collect();
-        a.set_nodes(nodes);
-        (a, (0..k).map(|i| (0.37 * i as f64).sin()).collect())
+        let mut solve = LinearSolve::default();
+        solve.set_nodes(nodes);
+        (a, solve, (0..k).map(|i| (0.37 * i as f64).sin()).collect())
     }
 
     #[test]
     fn iterative_and_direct_solutions_agree() {
         for unsymmetric in [0.0, 0.02] {
-            let (mut a, b) = grid_system(40, 30, unsymmetric);
+            let (a, mut solve, b) = grid_system(40, 30, unsymmetric);
             let mut x_it = b.clone();
-            a.set_solver(LinearSolver::Iterative);
-            a.solve(&mut x_it).unwrap();
-            let stats = a.iterative_stats();
+            solve.set_solver(LinearSolver::Iterative);
+            solve.solve(&a, &mut x_it).unwrap();
+            let stats = solve.iterative_stats();
             assert_eq!((stats.solves, stats.failures), (1, 0), "{stats:?}");
             assert_eq!(stats.cg_solves, usize::from(unsymmetric == 0.0));
             assert!(stats.krylov_iterations < 60, "{stats:?}");
             let mut x_lu = b.clone();
-            a.set_solver(LinearSolver::SparseLu);
-            a.solve(&mut x_lu).unwrap();
+            solve.set_solver(LinearSolver::SparseLu);
+            solve.solve(&a, &mut x_lu).unwrap();
             let scale = x_lu.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for (i, (p, q)) in x_it.iter().zip(&x_lu).enumerate() {
                 assert!((p - q).abs() < 1e-6 * scale, "x[{i}]: {p} vs {q}");

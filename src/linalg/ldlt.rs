@@ -16,7 +16,6 @@ use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::sparse::linalg::cholesky::{factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
-use std::time::{Duration, Instant};
 
 /// Largest relative difference `|a_ij − a_ji| ≤ tol · max(|a_ij|, |a_ji|)` (plus an absolute
 /// floor of `tol · max|a|`) accepted as symmetric. The element and frictionless contact
@@ -99,16 +98,14 @@ impl LdltPlan {
         self.l_values.len()
     }
 
-    /// Factorise `A` (pattern `sym`, values `values`, read from its upper triangle) and solve
-    /// `A x = b` in place; returns the time of the substitutions and the accuracy check. `b`
-    /// is left as it was on failure.
-    pub fn factorize_and_solve(
+    /// Factorise `A` (pattern `sym`, values `values`, read from its upper triangle); refuses
+    /// values that are not symmetric.
+    pub fn factorize(
         &mut self,
         sym: SymbolicSparseColMatRef<'_, usize>,
         values: &[f64],
-        b: &mut [f64],
         par: Par,
-    ) -> Result<Duration, LdltFailure> {
+    ) -> Result<(), LdltFailure> {
         if !symmetric(&self.mirror, values) {
             return Err(LdltFailure::Unsymmetric);
         }
@@ -124,7 +121,18 @@ impl LdltPlan {
                 Default::default(),
             )
             .map_err(|_| LdltFailure::ZeroPivot)?;
-        let factored = Instant::now();
+        Ok(())
+    }
+
+    /// Solve `A x = b` in place with the last factorisation of `A` (pattern `sym`, values
+    /// `values`), checking the solution's backward error; `b` is left as it was on failure.
+    pub fn solve(
+        &mut self,
+        sym: SymbolicSparseColMatRef<'_, usize>,
+        values: &[f64],
+        b: &mut [f64],
+        par: Par,
+    ) -> Result<(), LdltFailure> {
         self.x.copy_from_slice(b);
         let n = self.x.len();
         LdltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(
@@ -139,7 +147,7 @@ impl LdltPlan {
             return Err(LdltFailure::Inaccurate(eta));
         }
         b.copy_from_slice(&self.x);
-        Ok(factored.elapsed())
+        Ok(())
     }
 }
 

@@ -199,7 +199,7 @@ impl ModelRecord {
 }
 
 /// A contact slave point at the end of a converged increment (channel `/contact` of formats
-/// 1 and 2, read by this build; format 3 writes [`super::arrays::ContactArrays`]): the
+/// 1 and 2, read by this build; format 3 writes [`crate::record::mcap::arrays::ContactArrays`]): the
 /// increment and load level, then the fields of the solver's contact-point record.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 pub struct ContactPointMessage {

@@ -1,28 +1,17 @@
 //! What the solver reports, and to whom: record types (serde + JSON Schema) and the
 //! [`Observer`] trait that sinks implement. The solver never does I/O itself.
 
-pub mod arrays;
 pub mod atomic_file;
 pub mod background;
-pub mod csv;
 mod failure;
-pub mod format3;
-pub mod foxglove;
-mod json_text;
-pub mod jsonl;
-pub mod mcap_out;
-pub mod mcap_sink;
 pub mod messages;
+pub mod mcap;
+pub mod rrd;
+pub mod text;
+pub mod vtu;
 mod observer;
 pub mod pressure;
 pub mod real;
-mod rerun_curve;
-pub mod rerun_sink;
-mod rerun_style;
-mod rerun_view;
-pub mod schemas;
-pub mod vtu;
-pub mod vtu_sink;
 
 pub use failure::{ChangingPoint, FailureKind, PointDecision};
 pub use observer::{Fanout, Memory, Observer, ObserverError};

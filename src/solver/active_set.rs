@@ -311,7 +311,7 @@ pub(super) fn touching_pushed_in(
     // contacts it rests on, a block on a floor under its weight. It rests on them, so they
     // are held closed for the first correction
     let size = super::tangent_check::model_size(model);
-    if asm.matrix.solve(&mut ws.du).is_err() || ws.du.iter().any(|d| d.is_nan() || d.abs() > size) {
+    if asm.solve(&mut ws.du).is_err() || ws.du.iter().any(|d| d.is_nan() || d.abs() > size) {
         return Ok(touching);
     }
     // the probe only asks which way the correction moves the touching points; a correction

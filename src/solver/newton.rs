@@ -6,7 +6,7 @@ use super::line_search::{residual_backtracking, slope_search};
 use super::state::TrialState;
 use crate::assembly::{Assembler, AssemblyError};
 use crate::contact::law::ContactState;
-use crate::linalg::sparse::LinearError;
+use crate::linalg::factorization::LinearError;
 use crate::model::Model;
 use crate::record::{FailureKind, IterationRecord};
 use crate::settings::{LineSearch, NewtonSettings};
@@ -499,7 +499,7 @@ impl<'a> Iterate<'a> {
         for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
-        self.asm.matrix.solve(&mut ws.du)?;
+        self.asm.solve(&mut ws.du)?;
         let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
         if self.e0 == 0.0 {
             self.e0 = energy;

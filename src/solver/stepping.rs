@@ -166,7 +166,7 @@ impl<'a> Stepping<'a> {
         let st = &settings.stepping;
         let nominal = st.end / st.increments.max(1) as f64;
         let mut asm = Assembler::new(model);
-        asm.matrix.set_solver(settings.newton.linear_solver);
+        asm.linear.set_solver(settings.newton.linear_solver);
         let mut committed = TrialState::new(model);
         let start = Config {
             model,
@@ -484,13 +484,13 @@ impl<'a> Stepping<'a> {
     /// The run's figures.
     fn finish(self, started: Instant) -> RunSummary {
         let mut summary = self.summary;
-        let matrix = &self.asm.matrix;
+        let linear = &self.asm.linear;
         summary.t = self.t;
         summary.wall_time_s = started.elapsed().as_secs_f64();
-        summary.symbolic_factorizations = matrix.symbolic_factorizations;
+        summary.symbolic_factorizations = linear.symbolic_factorizations;
         summary.timings = self.asm.timings();
-        summary.iterative = matrix.iterative_stats();
-        summary.ldlt = matrix.ldlt_stats();
+        summary.iterative = linear.iterative_stats();
+        summary.ldlt = linear.ldlt_stats();
         summary.recording_s = self.recording.as_secs_f64();
         summary
     }

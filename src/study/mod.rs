@@ -13,7 +13,7 @@ pub use classify::{classify, FailureEvidence};
 pub use collect::{Collector, ContactLoss, CrossingJump, RunData};
 pub use progress::{ProgressLine, ProgressSink};
 
-use crate::record::mcap_sink::{McapOptions, McapSink};
+use crate::record::mcap::sink::{McapOptions, McapSink};
 use crate::record::{Fanout, Observer};
 use crate::solver::SolveError;
 use serde::{Deserialize, Serialize};

@@ -12,7 +12,7 @@
 //! is logged in pieces of [`PIECE`] points, so a long run does not log its history again at
 //! every increment.
 
-use super::rerun_style::{nice_ceiling, AXES, CURVE, GRID, SLIP, Y_UP_SCALE};
+use crate::record::rrd::style::{nice_ceiling, AXES, CURVE, GRID, SLIP, Y_UP_SCALE};
 use crate::format::plain;
 use rerun::RecordingStream;
 
@@ -24,7 +24,7 @@ const GAP: f32 = 0.6;
 const PIECE: usize = 100;
 
 /// The curve and what has been logged of it.
-pub(super) struct Curve {
+pub(crate) struct Curve {
     /// Entity path of the curve (`curve` or `curve/monitor/i`).
     root: String,
     x_name: String,
@@ -39,7 +39,7 @@ type LogResult = Result<(), rerun::RecordingStreamError>;
 impl Curve {
     /// Curve `index` (0: the first, under `/curve`) and its static parts: the y-up transform
     /// of `/curve`, or the place of a further curve next to the first.
-    pub(super) fn new(
+    pub(crate) fn new(
         rec: &RecordingStream,
         index: usize,
         x_name: &str,
@@ -75,7 +75,7 @@ impl Curve {
     }
 
     /// Add the point of the current increment (`crossed`: a segment crossing happened in it).
-    pub(super) fn push(&mut self, rec: &RecordingStream, p: [f64; 2], crossed: bool) -> LogResult {
+    pub(crate) fn push(&mut self, rec: &RecordingStream, p: [f64; 2], crossed: bool) -> LogResult {
         if !(p[0].is_finite() && p[1].is_finite()) {
             return Ok(());
         }

@@ -17,7 +17,7 @@
 //!
 //! The `.pvd` lists both per time step `t` (the load level) as `part` 0 and 1.
 
-use super::ContactPointRecord;
+use crate::record::ContactPointRecord;
 use crate::element::fields::CentreFields;
 use base64::Engine;
 use std::io::{self, Write};

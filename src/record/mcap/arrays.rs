@@ -8,9 +8,9 @@
 //! solver's records ([`ContactColumns`], [`PressureColumns`]) into the same JSON without
 //! building the arrays first. `tests` below check that both give the same JSON.
 
-use super::pressure::{PressurePoint, PressureRecord};
-use super::real::{Item, Item2, Real, Real2, Real2s, Reals};
-use super::ContactPointRecord;
+use crate::record::pressure::{PressurePoint, PressureRecord};
+use crate::record::real::{Item, Item2, Real, Real2, Real2s, Reals};
+use crate::record::ContactPointRecord;
 use crate::contact::law::ContactState;
 use crate::record::messages::ModelRecord;
 use schemars::JsonSchema;
@@ -229,7 +229,7 @@ impl Serialize for ContactColumns<'_> {
 }
 
 /// The contact pressure profile of one pair at one increment (channel `/pressure`, format
-/// 3; see [`super::pressure`]): one entry per paired slave node, in the order of the arc
+/// 3; see [`crate::record::pressure`]): one entry per paired slave node, in the order of the arc
 /// length `s` along the master.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PressureArrays {
@@ -330,7 +330,7 @@ impl Serialize for PressureColumns<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::record::*;
     use crate::record::messages::PairInfo;
 
     fn point(slave: usize, xi: f64) -> ContactPointRecord {

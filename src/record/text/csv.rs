@@ -4,7 +4,7 @@
 //! reaction_x, reaction_y, contact_closed, crossings`, then two named columns per monitor in
 //! scene order, `LABEL.displacement` and `LABEL.force` (quoted when the label needs it).
 
-use super::{IncrementRecord, Observer, ObserverError, Outcome, StepView};
+use crate::record::{IncrementRecord, Observer, ObserverError, Outcome, StepView};
 use std::io::Write;
 
 pub struct CsvSink<W: Write> {
@@ -25,7 +25,7 @@ impl<W: Write> CsvSink<W> {
 }
 
 impl<W: Write> Observer for CsvSink<W> {
-    fn start(&mut self, m: &crate::model::Model, _i: &super::RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, m: &crate::model::Model, _i: &crate::record::RunInfo) -> Result<(), ObserverError> {
         let mut header =
             "increment,t,displacement,force,iterations,cutbacks,reaction_x,reaction_y,contact_closed,crossings"
                 .to_string();

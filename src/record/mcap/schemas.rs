@@ -4,12 +4,12 @@
 //! `schemas/` (`CONTRAIL_BLESS=1 cargo test --test recording_schemas` rewrites those files;
 //! the test fails when they and the types disagree). The schemas of format 2 stay in
 //! `schemas/format2/` for validating older recordings. The Foxglove channels embed the
-//! published schemas of `@foxglove/schemas` (see [`super::foxglove`]).
+//! published schemas of `@foxglove/schemas` (see [`crate::record::mcap::foxglove`]).
 
-use super::arrays::{ContactArrays, PressureArrays};
-use super::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
-use super::messages::{CrossingMessage, ModelRecord, PackedPositions};
-use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
+use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
+use crate::record::mcap::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
+use crate::record::messages::{CrossingMessage, ModelRecord, PackedPositions};
+use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use std::path::Path;
 
 /// One channel of a recording.
@@ -82,7 +82,7 @@ pub const METADATA_NAME: &str = "contrail.run";
 pub const FORMAT_VERSION: &str = "3";
 /// Format versions this build reads (1: one `/contact` message per point of every
 /// increment; 2: points that stay out of reach left out, see
-/// [`crate::record::mcap_sink::OutOfReach`]; 3: `/contact` and `/pressure` as one message
+/// [`crate::record::mcap::sink::OutOfReach`]; 3: `/contact` and `/pressure` as one message
 /// of arrays per increment and pair, `/positions` packed, Foxglove channels beside).
 pub const READABLE_VERSIONS: &[&str] = &["1", "2", "3"];
 /// Schema names of the format-3 `/contact` and `/pressure` messages (formats 1 and 2 have

@@ -2,7 +2,7 @@
 //! the residual that is plotted and which contact points carry a label. Pure functions, so
 //! they are tested without a viewer.
 
-use super::ContactPointRecord;
+use crate::record::ContactPointRecord;
 use crate::contact::law::ContactState;
 
 /// rerun's 2D views put +y downward. Every 2D entity of the view lives under one root
@@ -148,7 +148,7 @@ pub fn nice_ceiling(x: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::record::*;
 
     fn point(state: ContactState) -> ContactPointRecord {
         ContactPointRecord {

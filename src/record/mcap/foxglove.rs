@@ -16,11 +16,11 @@
 //! (`.ci/interop.sh` validates them); those schemas are embedded in the recording as they are
 //! published ([`FOXGLOVE_LOG_SCHEMA`], [`FOXGLOVE_SCENE_SCHEMA`]).
 
-use super::json_text::{colour, point3, raw, real32, string, time, uint};
-use super::messages::ModelRecord;
-use super::rerun_style::{point_colour, MESH, REFERENCE, RIGID};
-use super::rerun_view::{bbox, clip};
-use super::{ContactPointRecord, LogLevel, LogRecord};
+use crate::record::mcap::json_text::{colour, point3, raw, real32, string, time, uint};
+use crate::record::messages::ModelRecord;
+use crate::record::rrd::style::{point_colour, MESH, REFERENCE, RIGID};
+use crate::record::rrd::view::{bbox, clip};
+use crate::record::{ContactPointRecord, LogLevel, LogRecord};
 use crate::contact::law::ContactState;
 
 /// JSON Schema of `foxglove.Log` (from `@foxglove/schemas` 2.1.0, descriptions left out).
@@ -327,7 +327,7 @@ fn primitives(out: &mut Vec<u8>, lists: &[(&str, &[u8])]) {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::record::*;
 
     fn model() -> ModelRecord {
         let (_, problem) = crate::load_scene("strip-channel", &[]).unwrap();

@@ -1,17 +1,17 @@
 //! What one converged increment becomes in a format-3 recording, apart from `/increment` and
 //! `/crossing` (written as they are): one `/contact` message of arrays per pair, with slave
-//! nodes that stay out of reach left out ([`super::mcap_sink::OutOfReach`]); `/pressure` and
+//! nodes that stay out of reach left out ([`crate::record::mcap::sink::OutOfReach`]); `/pressure` and
 //! `/positions` at the increments that have positions; the Foxglove scene at the increments
 //! that have one; and `/log` twice (contrail's and `foxglove.Log`). Shared by the MCAP sink
 //! and `contrail convert`, so that a converted recording is the one the sink would write.
 
-use super::arrays::{ContactColumns, PressureColumns};
-use super::foxglove::{self, SceneEncoder, SceneView};
-use super::mcap_out::{McapOut, OutError};
-use super::messages::{ModelRecord, PackedPositions, PositionsMessage};
-use super::pressure::PressureRecord;
-use super::schemas;
-use super::{ContactPointRecord, LogRecord};
+use crate::record::mcap::arrays::{ContactColumns, PressureColumns};
+use crate::record::mcap::foxglove::{self, SceneEncoder, SceneView};
+use crate::record::mcap::out::{McapOut, OutError};
+use crate::record::messages::{ModelRecord, PackedPositions, PositionsMessage};
+use crate::record::pressure::PressureRecord;
+use crate::record::mcap::schemas;
+use crate::record::{ContactPointRecord, LogRecord};
 use std::io::{Seek, Write};
 
 /// The node of a slave labelled `node N` (see [`crate::model::Model::slave_label`]).

@@ -1,10 +1,10 @@
 //! The file side of a recording: an mcap writer with contrail's channels registered, messages
 //! written as JSON into one reused buffer that goes to the writer's chunk as it is, the first
-//! I/O error kept (see [`super::atomic_file::Guarded`]) and reported instead of whatever the
+//! I/O error kept (see [`crate::record::atomic_file::Guarded`]) and reported instead of whatever the
 //! mcap writer made of it. Shared by the MCAP sink and `contrail convert`.
 
-use super::atomic_file::{FirstError, Guarded};
-use super::schemas::{self, CHANNELS};
+use crate::record::atomic_file::{FirstError, Guarded};
+use crate::record::mcap::schemas::{self, CHANNELS};
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};

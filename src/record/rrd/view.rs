@@ -2,18 +2,18 @@
 //! recording gives the same stream as the run).
 //!
 //! Entities: `/scene/**` (the model, y up through one static transform on `/scene`),
-//! `/curve/**` (the force–displacement curve, see [`super::rerun_curve`]), `/plots/newton`
+//! `/curve/**` (the force–displacement curve, see [`crate::record::rrd::curve`]), `/plots/newton`
 //! (per Newton iteration, timeline `newton` only), `/plots/increment/**` (per increment:
 //! Newton iterations, final residual, load level; timeline `increment` only) and `/events/**`.
 
-use super::messages::{ModelRecord, PositionsMessage};
-use super::rerun_curve::Curve;
-use super::rerun_sink::RerunError;
-use super::rerun_style::{
+use crate::record::messages::{ModelRecord, PositionsMessage};
+use crate::record::rrd::curve::Curve;
+use crate::record::rrd::sink::RerunError;
+use crate::record::rrd::style::{
     point_colour, point_label, relative_residual, traction_arrows, TractionArrows, ARROW_FRACTION,
     ARROW_OFFSET_FRACTION, MESH, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
 };
-use super::{ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome};
+use crate::record::{ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome};
 use crate::format::{plain, sig};
 use rerun::RecordingStream;
 

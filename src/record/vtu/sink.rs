@@ -1,12 +1,12 @@
 //! ParaView output: a `.pvd` collection and, for every N-th converged increment (and the
 //! last), a `.vtu` of the mesh with its fields and one of the contact points (format in
-//! [`super::vtu`]). `RUN.pvd` refers to `RUN/RUN_000012.vtu` and `RUN/RUN_contact_000012.vtu`
+//! [`crate::record::vtu::file`]). `RUN.pvd` refers to `RUN/RUN_000012.vtu` and `RUN/RUN_contact_000012.vtu`
 //! (increment 12). The `.pvd` is written when the run ends — also after a failure or an
 //! interruption — under a temporary name and renamed into place.
 
-use super::atomic_file::AtomicFile;
-use super::vtu::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
-use super::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
+use crate::record::atomic_file::AtomicFile;
+use crate::record::vtu::file::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
+use crate::record::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use crate::element::fields::{centre_fields, CentreFields};
 use crate::model::Model;
 use std::io::{self, BufWriter, Write};

@@ -1,6 +1,6 @@
 //! JSON-lines sink: every record as one line `{"kind": ..., "data": ...}`.
 
-use super::*;
+use crate::record::*;
 use serde::Serialize;
 use std::io::Write;
 

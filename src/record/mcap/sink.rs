@@ -1,24 +1,24 @@
-//! MCAP sink: every record as a JSON message on its channel (see [`super::schemas`]; the
-//! per-increment layout is format 3, [`super::format3`]), compressed chunks, the run's facts
+//! MCAP sink: every record as a JSON message on its channel (see [`crate::record::mcap::schemas`]; the
+//! per-increment layout is format 3, [`crate::record::mcap::format3`]), compressed chunks, the run's facts
 //! as MCAP metadata and the scene text as an attachment. `finish` writes the outcome as the
 //! last message and closes the file, so a failed or interrupted run still leaves a complete
 //! recording.
 //!
 //! [`McapSink::create`] writes a file under a temporary name and renames it into place at
-//! `finish` (see [`super::atomic_file`]). An I/O error (a full disk) is reported with its
+//! `finish` (see [`crate::record::atomic_file`]). An I/O error (a full disk) is reported with its
 //! cause and stops the run; the half-written temporary file is then removed, and the mcap
 //! writer — which cannot recover from an error in the middle of a chunk — never sees it.
 
-use super::atomic_file::AtomicFile;
-pub use super::format3::node_of_label;
-use super::format3::Format3Writer;
-use super::foxglove::{ScenePoint, SceneView};
-pub use super::mcap_out::ChunkCompression;
-use super::mcap_out::{Clock, Compression, McapOut, OutError};
-use super::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
-use super::pressure::{profiles, PressureLayout, PressureRecord};
-use super::schemas;
-use super::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
+use crate::record::atomic_file::AtomicFile;
+pub use crate::record::mcap::format3::node_of_label;
+use crate::record::mcap::format3::Format3Writer;
+use crate::record::mcap::foxglove::{ScenePoint, SceneView};
+pub use crate::record::mcap::out::ChunkCompression;
+use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
+use crate::record::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
+use crate::record::pressure::{profiles, PressureLayout, PressureRecord};
+use crate::record::mcap::schemas;
+use crate::record::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use crate::model::Model;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};

@@ -6,10 +6,10 @@
 //! [`RerunView`] logs from records alone, so `contrail replay` rebuilds the same stream from
 //! an MCAP recording; [`RerunSink`] is the observer that feeds it during a run.
 
-use super::messages::{ModelRecord, PositionsMessage};
-pub use super::rerun_view::{RerunView, FLUSH_TIMEOUT};
-use super::{IncrementRecord, IterationRecord, LogRecord, Outcome};
-use super::{Observer, ObserverError, RunInfo, StepView};
+use crate::record::messages::{ModelRecord, PositionsMessage};
+pub use crate::record::rrd::view::{RerunView, FLUSH_TIMEOUT};
+use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
+use crate::record::{Observer, ObserverError, RunInfo, StepView};
 use crate::model::Model;
 use rerun::blueprint::components::{PanelState, PlayState};
 use rerun::blueprint::{

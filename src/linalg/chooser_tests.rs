@@ -1,12 +1,14 @@
-//! Direct solvers of the sparse matrix: the banded and the general LU agree, the pattern
-//! grows.
+//! The solvers the chooser picks: the banded and the general LU agree, the pattern grows,
+//! `LDLᵀ` solves symmetric matrices and falls back to the LU.
 
 use super::*;
+use crate::linalg::sparse::SparseMatrix;
 
 #[test]
 fn unsymmetric_solve_and_pattern_growth() {
     let mut groups = vec![vec![0, 1], vec![1, 2]].into_iter();
     let mut a = SparseMatrix::new(3, &mut groups);
+    let mut solve = LinearSolve::default();
     assert_eq!(a.nnz(), 7);
     assert!(a.index(0, 2).is_none());
     assert!(a.extend(&[(0, 2)]));
@@ -27,15 +29,15 @@ fn unsymmetric_solve_and_pattern_growth() {
     let x = [1.0, -2.0, 0.5];
     let mut b = [0.0; 3];
     a.mul(&x, &mut b);
-    a.solve(&mut b).unwrap();
+    solve.solve(&a, &mut b).unwrap();
     for i in 0..3 {
         assert!((b[i] - x[i]).abs() < 1e-14);
     }
     // refill values, same symbolic factorisation
     a.values.iter_mut().for_each(|v| *v *= 2.0);
     a.mul(&x, &mut b);
-    a.solve(&mut b).unwrap();
-    assert_eq!(a.symbolic_factorizations, 1);
+    solve.solve(&a, &mut b).unwrap();
+    assert_eq!(solve.symbolic_factorizations, 1);
     assert!((b[1] + 2.0).abs() < 1e-14);
 }
 
@@ -62,13 +64,13 @@ fn banded_and_sparse_lu_agree_on_a_strip() {
     let mut solutions = Vec::new();
     for solver in [LinearSolver::Auto, LinearSolver::SparseLu] {
         let mut a = SparseMatrix::new(n, &mut groups.clone().into_iter());
-        a.set_solver(solver);
+        let mut s = LinearSolve::new(solver);
         fill(&mut a);
         let mut b = vec![0.0; n];
         a.mul(&x, &mut b);
-        a.solve(&mut b).unwrap();
-        assert_eq!(a.band_widths().is_some(), solver == LinearSolver::Auto);
-        if let Some((kl, ku)) = a.band_widths() {
+        s.solve(&a, &mut b).unwrap();
+        assert_eq!(s.band_widths().is_some(), solver == LinearSolver::Auto);
+        if let Some((kl, ku)) = s.band_widths() {
             assert!(
                 kl <= 20 && ku <= 20,
                 "band ({kl}, {ku}) after RCM (column-wise numbering: 11)"
@@ -106,12 +108,12 @@ fn symmetric_matrix_is_solved_by_ldlt() {
     let mut solutions = Vec::new();
     for solver in [LinearSolver::General, LinearSolver::SparseLu] {
         let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
-        a.set_solver(solver);
+        let mut chooser = LinearSolve::new(solver);
         fill_grid(&mut a, 12.0, 0.0);
         let mut b = vec![0.0; n];
         a.mul(&x, &mut b);
-        a.solve(&mut b).unwrap();
-        let s = a.ldlt_stats();
+        chooser.solve(&a, &mut b).unwrap();
+        let s = chooser.ldlt_stats();
         if solver == LinearSolver::General {
             assert_eq!((s.plans, s.solves, s.fallbacks), (1, 1, 0), "{s:?}");
             assert!(s.factor_nnz > a.nnz() / 2);
@@ -133,30 +135,30 @@ fn unsymmetric_values_fall_back_to_the_lu() {
     let (nx, ny) = (6, 6);
     let n = 2 * (nx + 1) * (ny + 1);
     let x: Vec<f64> = (0..n).map(|i| 1.0 + (0.7 * i as f64).sin()).collect();
-    let solve = |a: &mut SparseMatrix| {
+    let solve = |a: &SparseMatrix, s: &mut LinearSolve| {
         let mut b = vec![0.0; n];
         a.mul(&x, &mut b);
-        a.solve(&mut b).unwrap();
+        s.solve(a, &mut b).unwrap();
         let err = b.iter().zip(&x).fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
         assert!(err < 1e-12, "{err}");
     };
     let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
-    a.set_solver(LinearSolver::General);
+    let mut chooser = LinearSolve::new(LinearSolver::General);
     fill_grid(&mut a, 12.0, 0.1);
-    solve(&mut a);
-    assert_eq!(a.ldlt_stats().plans, 0);
+    solve(&a, &mut chooser);
+    assert_eq!(chooser.ldlt_stats().plans, 0);
 
     let mut a = SparseMatrix::new(n, &mut quad_grid_groups(nx, ny).into_iter());
-    a.set_solver(LinearSolver::General);
+    let mut chooser = LinearSolve::new(LinearSolver::General);
     fill_grid(&mut a, 12.0, 0.0);
-    solve(&mut a);
+    solve(&a, &mut chooser);
     fill_grid(&mut a, 12.0, 1e-6); // a slip tangent appears
-    solve(&mut a);
-    solve(&mut a);
-    let s = a.ldlt_stats();
+    solve(&a, &mut chooser);
+    solve(&a, &mut chooser);
+    let s = chooser.ldlt_stats();
     assert_eq!((s.plans, s.solves, s.fallbacks), (1, 1, 1), "{s:?}");
     assert_eq!(s.last_failure, Some(super::super::ldlt::LdltFailure::Unsymmetric));
-    assert_eq!(a.factorizations, 3);
+    assert_eq!(chooser.times.factorizations, 3);
 }
 
 /// A symmetric indefinite matrix with zero diagonal (no `LDLᵀ` without pivoting exists) is
@@ -165,7 +167,7 @@ fn unsymmetric_values_fall_back_to_the_lu() {
 fn indefinite_matrix_without_diagonal_pivots_falls_back() {
     let mut groups = vec![vec![0, 1], vec![2, 3]].into_iter();
     let mut a = SparseMatrix::new(4, &mut groups);
-    a.set_solver(LinearSolver::General);
+    let mut chooser = LinearSolve::new(LinearSolver::General);
     // A = [[0,1],[1,0]] ⊕ [[0,2],[2,0]]
     for (r, c, v) in [(0, 1, 1.0), (1, 0, 1.0), (2, 3, 2.0), (3, 2, 2.0)] {
         let k = a.index(r, c).unwrap();
@@ -174,10 +176,10 @@ fn indefinite_matrix_without_diagonal_pivots_falls_back() {
     let x = [1.0, -2.0, 0.5, 3.0];
     let mut b = [0.0; 4];
     a.mul(&x, &mut b);
-    a.solve(&mut b).unwrap();
+    chooser.solve(&a, &mut b).unwrap();
     for i in 0..4 {
         assert!((b[i] - x[i]).abs() < 1e-14, "x[{i}] = {}", b[i]);
     }
-    let s = a.ldlt_stats();
+    let s = chooser.ldlt_stats();
     assert_eq!((s.plans, s.solves, s.fallbacks), (1, 0, 1), "{s:?}");
 }

@@ -1,0 +1,287 @@
+//! Which factorisation solves `K Δu = −R`, and what happens when one fails: the one place
+//! that decides (the plans themselves are behind [`Factorization`]).
+//!
+//! Per pattern ([`SparseMatrix::generation`]), with the setting [`LinearSolver`]:
+//! - `auto`: the banded LU after reverse Cuthill–McKee when the band is narrow
+//!   ([`super::band`]); otherwise faer's `LDLᵀ` while the values are symmetric
+//!   ([`super::ldlt`]), and faer's sparse LU when they are not;
+//! - `general`: `LDLᵀ`, else the sparse LU (no band); `sparse-lu`: the sparse LU only;
+//! - `iterative`: the multigrid Krylov solver ([`super::iterative`]), with the sparse LU
+//!   for a solve it cannot make.
+//!
+//! Fallbacks: an `LDLᵀ` factorisation or solve that fails (unsymmetric values, a zero
+//! pivot, a large backward error) retires the plan for the rest of its pattern and the LU
+//! solves; a failed iterative solve is repeated by the LU (the next solve tries the
+//! iterative solver again). faer's factorisations run sequentially below
+//! [`PARALLEL_FROM`] unknowns and with faer's global parallelism above.
+
+use super::aggregation::MeshNode;
+use super::band_plan::BandPlan;
+use super::factorization::{Factorization, LinearError};
+use super::faer_lu::LuPlan;
+use super::iterative::{IterativePlan, IterativeStats};
+use super::ldlt::{LdltPlan, LdltStats};
+use super::sparse::SparseMatrix;
+pub use crate::settings::LinearSolver;
+use faer::Par;
+use std::time::{Duration, Instant};
+
+/// Systems with at least this many unknowns are factorised with faer's global parallelism.
+pub const PARALLEL_FROM: usize = 20_000;
+
+/// Numeric factorisations made, and the time spent in them (symbolic analyses and the
+/// multigrid set-up included) and in the substitutions.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolveTimes {
+    pub factorizations: usize,
+    pub factor_time: Duration,
+    pub solve_time: Duration,
+}
+
+/// The linear solves of one matrix over a run: the plans of its current pattern and the
+/// counts of all patterns.
+pub struct LinearSolve {
+    solver: LinearSolver,
+    /// Free equations and reference position of each mesh node (the multigrid's rigid-body
+    /// modes), when the owner gave them.
+    nodes: Option<Vec<MeshNode>>,
+    /// The pattern the plans below were made for.
+    generation: Option<u64>,
+    band: Option<BandPlan>,
+    ldlt: Option<LdltPlan>,
+    ldlt_decided: bool,
+    ldlt_stats: LdltStats,
+    lu: Option<LuPlan>,
+    iterative: Option<IterativePlan>,
+    /// Counts of the iterative plans of earlier patterns.
+    iterative_stats: IterativeStats,
+    /// Symbolic analyses made (one per plan).
+    pub symbolic_factorizations: usize,
+    pub times: SolveTimes,
+}
+
+impl Default for LinearSolve {
+    fn default() -> Self {
+        LinearSolve::new(LinearSolver::Auto)
+    }
+}
+
+impl LinearSolve {
+    pub fn new(solver: LinearSolver) -> Self {
+        LinearSolve {
+            solver,
+            nodes: None,
+            generation: None,
+            band: None,
+            ldlt: None,
+            ldlt_decided: false,
+            ldlt_stats: LdltStats::default(),
+            lu: None,
+            iterative: None,
+            iterative_stats: IterativeStats::default(),
+            symbolic_factorizations: 0,
+            times: SolveTimes::default(),
+        }
+    }
+
+    /// Choose the solver (the plans are made again at the next solve).
+    pub fn set_solver(&mut self, solver: LinearSolver) {
+        self.solver = solver;
+        self.forget_plans();
+    }
+
+    /// Give the free equations `(x, y)` and reference position of each mesh node: the
+    /// multigrid preconditioner of the iterative solver is built on their rigid-body modes.
+    pub fn set_nodes(&mut self, nodes: Vec<MeshNode>) {
+        self.nodes = Some(nodes);
+        self.forget_plans();
+    }
+
+    /// Whether the banded LU solves the current pattern.
+    pub fn banded(&self) -> bool {
+        self.band.is_some()
+    }
+
+    /// The half-bandwidths `(kl, ku)` of the banded factorisation in use, if one is.
+    pub fn band_widths(&self) -> Option<(usize, usize)> {
+        self.band.as_ref().map(|b| (b.lu.kl, b.lu.ku))
+    }
+
+    /// Counts of the iterative solves so far (all zero when only the direct solvers were used).
+    pub fn iterative_stats(&self) -> IterativeStats {
+        let mut s = self.iterative_stats;
+        if let Some(p) = &self.iterative {
+            let c = p.stats;
+            s.solves += c.solves;
+            s.cg_solves += c.cg_solves;
+            s.krylov_iterations += c.krylov_iterations;
+            s.max_krylov_iterations = s.max_krylov_iterations.max(c.max_krylov_iterations);
+            s.builds += c.builds;
+            s.failures += c.failures;
+            if c.builds > 0 {
+                s.levels = c.levels;
+                s.complexity = c.complexity;
+                s.constrained_nodes = c.constrained_nodes;
+            }
+        }
+        s
+    }
+
+    /// Counts of the symmetric (`LDLᵀ`) factorisations so far.
+    pub fn ldlt_stats(&self) -> LdltStats {
+        self.ldlt_stats
+    }
+
+    /// Solve `a x = b` in place, with the plans of `a`'s pattern (made at its first solve).
+    pub fn solve(&mut self, a: &SparseMatrix, b: &mut [f64]) -> Result<(), LinearError> {
+        if self.generation != Some(a.generation()) {
+            self.plan(a);
+        }
+        let par = parallelism(a.n);
+        if let Some(plan) = self.iterative.as_mut() {
+            let started = Instant::now();
+            if plan.solve(a, b, par).is_ok() {
+                let setup = plan.last_setup;
+                self.times.factor_time += setup;
+                self.times.solve_time += started.elapsed().saturating_sub(setup);
+            } else {
+                // counted as a failure by the plan; `b` is as it was
+                self.times.solve_time += started.elapsed();
+                self.solve_lu(a, b, par)?;
+            }
+        } else if let Some(plan) = self.band.as_mut() {
+            factorize_and_solve(plan, a, b, par, &mut self.times)?;
+        } else if !self.solve_symmetric(a, b, par) {
+            self.solve_lu(a, b, par)?;
+        }
+        if b.iter().any(|v| !v.is_finite()) {
+            return Err(LinearError::NonFinite);
+        }
+        Ok(())
+    }
+
+    /// The plans of a new pattern: the band when the setting allows it and it pays, the
+    /// iterative solver when asked for (the symmetric and LU plans are made when first used).
+    fn plan(&mut self, a: &SparseMatrix) {
+        self.forget_plans();
+        self.generation = Some(a.generation());
+        if self.solver == LinearSolver::Auto {
+            self.band = BandPlan::new(a.n, &a.col_ptr, &a.row_idx);
+            self.symbolic_factorizations += usize::from(self.band.is_some());
+        }
+        // only when asked for: on the large-model benchmark it is slower than the LU at
+        // every size measured (docs/large-models.md)
+        if let (LinearSolver::Iterative, Some(nodes)) = (self.solver, &self.nodes) {
+            self.iterative = Some(IterativePlan::new(a.n, &a.col_ptr, &a.row_idx, nodes));
+        }
+    }
+
+    /// Drop every plan (the counts of the iterative one are kept).
+    fn forget_plans(&mut self) {
+        self.generation = None;
+        self.band = None;
+        self.lu = None;
+        self.ldlt = None;
+        self.ldlt_decided = false;
+        if self.iterative.is_some() {
+            self.iterative_stats = self.iterative_stats();
+            self.iterative = None;
+        }
+    }
+
+    /// Solve with `LDLᵀ` when the setting allows it and the pattern's first values were
+    /// symmetric; returns whether it did (`b` is untouched when not). A failure retires the
+    /// plan for the rest of the pattern's life.
+    fn solve_symmetric(&mut self, a: &SparseMatrix, b: &mut [f64], par: Par) -> bool {
+        if !matches!(self.solver, LinearSolver::Auto | LinearSolver::General) {
+            return false;
+        }
+        if !self.ldlt_decided {
+            self.ldlt_decided = true;
+            let started = Instant::now();
+            self.ldlt = LdltPlan::new(a.n, &a.col_ptr, &a.row_idx, &a.values, par);
+            self.times.factor_time += started.elapsed();
+            if let Some(plan) = &self.ldlt {
+                self.symbolic_factorizations += 1;
+                self.ldlt_stats.plans += 1;
+                self.ldlt_stats.factor_nnz = plan.factor_nnz();
+            }
+        }
+        let Some(plan) = self.ldlt.as_mut() else {
+            return false;
+        };
+        match factorize_and_solve(plan, a, b, par, &mut self.times) {
+            Ok(()) => {
+                self.ldlt_stats.solves += 1;
+                true
+            }
+            Err(e) => {
+                self.ldlt_stats.fallbacks += 1;
+                if let LinearError::Symmetric(why) = e {
+                    self.ldlt_stats.last_failure = Some(why);
+                }
+                self.ldlt = None;
+                false
+            }
+        }
+    }
+
+    /// Solve with faer's sparse LU (its symbolic analysis made once per pattern).
+    fn solve_lu(&mut self, a: &SparseMatrix, b: &mut [f64], par: Par) -> Result<(), LinearError> {
+        if self.lu.is_none() {
+            let started = Instant::now();
+            self.lu = Some(LuPlan::new(a.symbolic(), par)?);
+            self.times.factor_time += started.elapsed();
+            self.symbolic_factorizations += 1;
+        }
+        let lu = self.lu.as_mut().expect("set above");
+        factorize_and_solve(lu, a, b, par, &mut self.times)
+    }
+}
+
+/// Factorise and solve with one plan, timing both steps.
+fn factorize_and_solve(
+    plan: &mut dyn Factorization,
+    a: &SparseMatrix,
+    b: &mut [f64],
+    par: Par,
+    times: &mut SolveTimes,
+) -> Result<(), LinearError> {
+    let started = Instant::now();
+    let factored = plan.factorize(a, par);
+    let done = Instant::now();
+    times.factor_time += done - started;
+    factored?;
+    times.factorizations += 1;
+    let solved = plan.solve(a, b, par);
+    times.solve_time += done.elapsed();
+    solved
+}
+
+/// The parallelism of faer's factorisations: sequential below [`PARALLEL_FROM`].
+fn parallelism(n: usize) -> Par {
+    if n < PARALLEL_FROM {
+        Par::Seq
+    } else {
+        faer::get_global_parallelism()
+    }
+}
+
+/// The unknowns of each cell of an `nx × ny` grid of 4-node cells, nodes numbered row by row
+/// and two unknowns per node (for tests).
+#[cfg(test)]
+pub(crate) fn quad_grid_groups(nx: usize, ny: usize) -> Vec<Vec<usize>> {
+    let node = |i: usize, j: usize| j * (nx + 1) + i;
+    let mut groups = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let q = [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)];
+            groups.push(q.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect::<Vec<_>>());
+        }
+    }
+    groups
+}
+
+#[cfg(test)]
+#[path = "chooser_tests.rs"]
+mod tests;
