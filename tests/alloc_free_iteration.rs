@@ -67,6 +67,7 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
         increment: 1,
         attempt: 0,
         predicted: false,
+        shorten_predicted: false,
     };
     solve_increment(
         model,

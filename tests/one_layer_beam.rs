@@ -22,8 +22,10 @@
 //! * the default element within 0.5 % of the reference on every mesh of the study
 //!   (24, 60, 120, 240 × 1 and 240 × 2 here; 480 × 1 and 480 × 2 in the full study), at 40
 //!   increments and at 80 (the step refined), and no element reported unstable;
-//! * plain EAS forced on 240 × 1: the run reports elements that lost stability (with the
-//!   increment they did), and its answer is more than 10 % off — the warning is not idle.
+//! * plain EAS forced on 240 × 1: the run's log warns that elements lost stability; if the
+//!   run completes, its answer is more than 10 % off — the warning is not idle (since the
+//!   element checks det F, measured 2026-11-26, the run stops at t ≈ 0.61 where an element
+//!   folds, after the warning).
 //!
 //! Release tier (`cargo test --release --test one_layer_beam`); the full study is
 //! `-- --include-ignored`.
@@ -87,16 +89,34 @@ fn one_layer_beam_full_refinement_study() {
 #[cfg_attr(debug_assertions, ignore = "release tier")]
 fn one_layer_beam_plain_eas_forced_is_reported_unstable_and_wrong() {
     let (reference, _) = cantilever_tip(beam_stiffness(2.1e4, 0.3, 0.5), L, 10.0);
-    let (v, s) = tip(10.0, [240, 1], 40, Some("q4-eas"));
-    let unstable = s
-        .unstable_elements
-        .expect("plain EAS on 240 × 1 reported no unstable element");
-    println!(
-        "q4-eas 240 × 1, k = 10: v/L = {v:.5} ({:+.1} %), unstable from increment {}, up to {} elements",
-        100.0 * (v / reference - 1.0),
-        unstable.first_increment,
-        unstable.most
-    );
-    assert!((v / reference - 1.0).abs() > 0.1, "{v} vs {reference}");
-    assert!(unstable.most >= 1 && unstable.worst_ratio < 0.0);
+    let section = beam_stiffness(2.1e4, 0.3, 0.5);
+    let sets = [
+        format!("load.0.total={}", -10.0 * section.ei / (L * L)),
+        "body.strip.mesh.elements=[240, 1]".to_string(),
+        "stepping.increments=40".to_string(),
+        "body.strip.element=q4-eas".to_string(),
+    ];
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let (outcome, memory) = common::solve(&common::scene("cantilever", &sets));
+    // the warning is in the run's log whether the run completes (with a wrong answer) or
+    // stops where an element folds (det F < 0 is inadmissible)
+    let warned = memory.logs.iter().any(|l| l.message.contains("have lost stability"));
+    assert!(warned, "plain EAS on 240 × 1 logged no instability warning");
+    match outcome {
+        Ok(s) => {
+            let v = s.monitor.as_ref().unwrap().displacement / L;
+            let unstable = s
+                .unstable_elements
+                .expect("plain EAS on 240 × 1 reported no unstable element");
+            println!(
+                "q4-eas 240 × 1, k = 10: v/L = {v:.5} ({:+.1} %), unstable from increment {}, up to {} elements",
+                100.0 * (v / reference - 1.0),
+                unstable.first_increment,
+                unstable.most
+            );
+            assert!((v / reference - 1.0).abs() > 0.1, "{v} vs {reference}");
+            assert!(unstable.most >= 1 && unstable.worst_ratio < 0.0);
+        }
+        Err(e) => println!("q4-eas 240 × 1, k = 10: stops after the instability warning: {e}"),
+    }
 }

@@ -55,6 +55,7 @@ pub fn solve_augmented(
         let again = IncrementTarget {
             reference_floor: target.reference_floor.max(conv.reference),
             predicted: false,
+            shorten_predicted: false,
             ..target
         };
         let next = solve_increment(model, settings, asm, state, again, &mut renumbered, ws)?;

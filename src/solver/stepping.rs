@@ -225,6 +225,10 @@ impl<'a> Stepping<'a> {
 
     /// Attempts at the increment until one converges: a failed predicted start is retried
     /// from the converged state, any other failure cuts the step in half (or ends the run).
+    /// A predicted start given up at its first inadmissible correction (see
+    /// `newton::Iterate::shorten`) is tried once more, with shortened corrections, when the
+    /// converged start fails too: the ladder of starts costs no convergence the patient
+    /// prediction would have found.
     fn converge_increment(
         &mut self,
         obs: &mut dyn Observer,
@@ -232,6 +236,7 @@ impl<'a> Stepping<'a> {
     ) -> Result<ConvergedIncrement, SolveError> {
         let st = &self.settings.stepping;
         let mut predict = st.predictor == Predictor::Secant && self.last_dt.is_some();
+        let (mut patient, mut abandoned) = (false, false);
         let (mut attempt, mut cutbacks) = (0, 0);
         loop {
             let t_new = self.next_time();
@@ -242,6 +247,7 @@ impl<'a> Stepping<'a> {
                 increment: self.increment,
                 attempt,
                 predicted: predict,
+                shorten_predicted: patient,
             };
             match self.attempt(&mut trial, target, obs, stop)? {
                 Ok(conv) => {
@@ -252,7 +258,8 @@ impl<'a> Stepping<'a> {
                         cutbacks,
                     })
                 }
-                Err(f) if predict => {
+                Err(f) if predict && !patient => {
+                    abandoned = super::newton::inadmissible(&f);
                     let message = format!(
                         "increment {} at t = {t_new:.6}: {f} from the predicted start; retrying from the last converged state",
                         self.increment
@@ -260,7 +267,16 @@ impl<'a> Stepping<'a> {
                     log(obs, LogLevel::Info, self.increment, t_new, message)?;
                     predict = false;
                 }
+                Err(f) if abandoned => {
+                    let message = format!(
+                        "increment {} at t = {t_new:.6}: {f} from the last converged state; retrying from the predicted start with shortened corrections",
+                        self.increment
+                    );
+                    log(obs, LogLevel::Info, self.increment, t_new, message)?;
+                    (predict, patient, abandoned) = (true, true, false);
+                }
                 Err(f) => {
+                    (predict, patient) = (false, false);
                     self.cut_back(f, &trial, t_new, cutbacks, obs)?;
                     cutbacks += 1;
                 }
