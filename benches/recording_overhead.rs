@@ -7,7 +7,7 @@
 
 use contrail::problem::Problem;
 use contrail::record::mcap::sink::{ChunkCompression, McapOptions, McapSink};
-use contrail::record::rrd::sink::{self, RerunSink, RerunTargets};
+use contrail::record::rrd::sink::{self as rerun_sink, RerunSink, RerunTargets};
 use contrail::record::{Observer, RunInfo};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::io::BufWriter;

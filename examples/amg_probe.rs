@@ -5,7 +5,7 @@
 //! Run: `cargo run --release --example amg_probe -- scenes/punch-large.toml 316x15 [--set k=v]…`
 
 use contrail::assembly::Assembler;
-use contrail::linalg::sparse::LinearSolver;
+use contrail::linalg::chooser::LinearSolver;
 use contrail::solver::state::TrialState;
 use std::time::Instant;
 
@@ -33,22 +33,22 @@ fn main() {
     let n = asm.dofs.n_free;
     let b: Vec<f64> = (0..n).map(|i| (0.37 * i as f64).sin()).collect();
     let mut x_lu = b.clone();
-    asm.matrix.set_solver(LinearSolver::SparseLu);
+    asm.linear.set_solver(LinearSolver::SparseLu);
     let t0 = Instant::now();
-    asm.matrix.solve(&mut x_lu).unwrap();
+    asm.solve(&mut x_lu).unwrap();
     let t_lu = t0.elapsed();
-    asm.matrix.set_solver(LinearSolver::Iterative);
+    asm.linear.set_solver(LinearSolver::Iterative);
     let mut x = b.clone();
     let t0 = Instant::now();
-    let r = asm.matrix.solve(&mut x);
+    let r = asm.solve(&mut x);
     let t_it = t0.elapsed();
-    let (setup, krylov) = (asm.matrix.factor_time, asm.matrix.solve_time);
+    let (setup, krylov) = (asm.linear.times.factor_time, asm.linear.times.solve_time);
     println!(
         "setup+LU {:.1} ms, krylov+LUsolve {:.1} ms",
         setup.as_secs_f64() * 1e3,
         krylov.as_secs_f64() * 1e3
     );
-    let s = asm.matrix.iterative_stats();
+    let s = asm.linear.iterative_stats();
     let err = x.iter().zip(&x_lu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
         / x_lu.iter().map(|v| v.abs()).fold(0.0, f64::max);
     println!(

@@ -18,7 +18,7 @@
 //! JSON values, so the rewrite is known to be format 2's layout): give it a format-2
 //! recording and its `contrail convert` into format 3.
 
-use contrail::record::arrays::{ContactArrays, PressureArrays};
+use contrail::record::mcap::arrays::{ContactArrays, PressureArrays};
 use contrail::record::messages::{ContactPointMessage, ModelRecord, PackedPositions};
 use std::collections::{BTreeMap, HashMap};
 use std::io::Cursor;

@@ -8,7 +8,7 @@
 //!     stepping.max_cutbacks=0
 //! ```
 use contrail::model::Model;
-use contrail::record::mcap_sink::{ChunkCompression, McapOptions, McapSink, SceneEvery};
+use contrail::record::mcap::sink::{ChunkCompression, McapOptions, McapSink, SceneEvery};
 use contrail::record::*;
 use std::io::Cursor;
 use std::sync::atomic::AtomicBool;
@@ -147,7 +147,7 @@ fn main() {
         (
             "failed its",
             McapOptions {
-                iterations: contrail::record::mcap_sink::Iterations::Failed,
+                iterations: contrail::record::mcap::sink::Iterations::Failed,
                 ..McapOptions::default()
             },
         ),

@@ -6,7 +6,7 @@ use contrail::analysis::inspect::inspect;
 use contrail::analysis::recording::Recording;
 use contrail::problem::Problem;
 use contrail::record::mcap::sink::{McapOptions, McapSink};
-use contrail::record::rrd::sink::{self, RerunSink, RerunTargets, RerunView};
+use contrail::record::rrd::sink::{self as rerun_sink, RerunSink, RerunTargets, RerunView};
 use contrail::record::{
     ContactPointRecord, Fanout, IterationRecord, Memory, Observer, ObserverError, Outcome, RunInfo,
 };

@@ -10,10 +10,10 @@ use super::recording::Recording;
 use crate::record::mcap::format3::Format3Writer;
 use crate::record::mcap::foxglove::{ScenePoint, SceneView};
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
+use crate::record::mcap::schemas;
 use crate::record::mcap::sink::SceneEvery;
 use crate::record::messages::CrossingMessageRef;
 use crate::record::pressure::PressureRecord;
-use crate::record::mcap::schemas;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 

@@ -5,9 +5,9 @@
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
 use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
+use crate::record::mcap::schemas;
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
-use crate::record::mcap::schemas;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
 use mcap::records::Record;
 use serde::de::DeserializeOwned;

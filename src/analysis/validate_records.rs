@@ -5,8 +5,8 @@
 //! index going out of bounds.
 
 use super::recording::Builder;
-use crate::record::messages::ModelRecord;
 use crate::record::mcap::schemas;
+use crate::record::messages::ModelRecord;
 
 /// Largest increment number accepted (a run of more increments would not fit in a file).
 pub const MAX_INCREMENT: usize = u32::MAX as usize;

@@ -3,7 +3,7 @@
 use super::out::outln;
 use super::BadInput;
 use contrail::analysis::recording::Recording;
-use contrail::record::rrd::sink::{self, RerunTargets, RerunView};
+use contrail::record::rrd::sink::{self as rerun_sink, RerunTargets, RerunView};
 use contrail::record::CrossingRecord;
 use std::collections::HashMap;
 use std::path::PathBuf;

@@ -140,7 +140,7 @@ impl LinearSolve {
         let par = parallelism(a.n);
         if let Some(plan) = self.iterative.as_mut() {
             let started = Instant::now();
-            if plan.solve(a, b, par).is_ok() {
+            if Factorization::solve(plan, a, b, par).is_ok() {
                 let setup = plan.last_setup;
                 self.times.factor_time += setup;
                 self.times.solve_time += started.elapsed().saturating_sub(setup);

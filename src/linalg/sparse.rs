@@ -6,7 +6,6 @@
 
 use faer::sparse::{SymbolicSparseColMat, SymbolicSparseColMatRef};
 
-
 /// Square sparse matrix with a fixed pattern.
 pub struct SparseMatrix {
     pub n: usize,

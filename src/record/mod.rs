@@ -4,14 +4,14 @@
 pub mod atomic_file;
 pub mod background;
 mod failure;
-pub mod messages;
 pub mod mcap;
-pub mod rrd;
-pub mod text;
-pub mod vtu;
+pub mod messages;
 mod observer;
 pub mod pressure;
 pub mod real;
+pub mod rrd;
+pub mod text;
+pub mod vtu;
 
 pub use failure::{ChangingPoint, FailureKind, PointDecision};
 pub use observer::{Fanout, Memory, Observer, ObserverError};

@@ -8,11 +8,11 @@
 //! solver's records ([`ContactColumns`], [`PressureColumns`]) into the same JSON without
 //! building the arrays first. `tests` below check that both give the same JSON.
 
+use crate::contact::law::ContactState;
+use crate::record::messages::ModelRecord;
 use crate::record::pressure::{PressurePoint, PressureRecord};
 use crate::record::real::{Item, Item2, Real, Real2, Real2s, Reals};
 use crate::record::ContactPointRecord;
-use crate::contact::law::ContactState;
-use crate::record::messages::ModelRecord;
 use schemars::JsonSchema;
 use serde::ser::{SerializeSeq, SerializeStruct, Serializer};
 use serde::{Deserialize, Serialize};
@@ -330,7 +330,7 @@ impl Serialize for PressureColumns<'_> {
 
 #[cfg(test)]
 mod tests {
-    use crate::record::*;
+    use super::*;
     use crate::record::messages::PairInfo;
 
     fn point(slave: usize, xi: f64) -> ContactPointRecord {

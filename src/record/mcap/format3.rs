@@ -8,9 +8,9 @@
 use crate::record::mcap::arrays::{ContactColumns, PressureColumns};
 use crate::record::mcap::foxglove::{self, SceneEncoder, SceneView};
 use crate::record::mcap::out::{McapOut, OutError};
+use crate::record::mcap::schemas;
 use crate::record::messages::{ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
-use crate::record::mcap::schemas;
 use crate::record::{ContactPointRecord, LogRecord};
 use std::io::{Seek, Write};
 

@@ -16,17 +16,17 @@
 //! (`.ci/interop.sh` validates them); those schemas are embedded in the recording as they are
 //! published ([`FOXGLOVE_LOG_SCHEMA`], [`FOXGLOVE_SCENE_SCHEMA`]).
 
+use crate::contact::law::ContactState;
 use crate::record::mcap::json_text::{colour, point3, raw, real32, string, time, uint};
 use crate::record::messages::ModelRecord;
 use crate::record::rrd::style::{point_colour, MESH, REFERENCE, RIGID};
 use crate::record::rrd::view::{bbox, clip};
 use crate::record::{ContactPointRecord, LogLevel, LogRecord};
-use crate::contact::law::ContactState;
 
 /// JSON Schema of `foxglove.Log` (from `@foxglove/schemas` 2.1.0, descriptions left out).
-pub const FOXGLOVE_LOG_SCHEMA: &str = include_str!("../../schemas/foxglove/foxglove.Log.json");
+pub const FOXGLOVE_LOG_SCHEMA: &str = include_str!("../../../schemas/foxglove/foxglove.Log.json");
 /// JSON Schema of `foxglove.SceneUpdate` (likewise).
-pub const FOXGLOVE_SCENE_SCHEMA: &str = include_str!("../../schemas/foxglove/foxglove.SceneUpdate.json");
+pub const FOXGLOVE_SCENE_SCHEMA: &str = include_str!("../../../schemas/foxglove/foxglove.SceneUpdate.json");
 
 /// Frame of every scene entity (Foxglove's 3D panel displays it when no other frame exists).
 pub const FRAME: &str = "contrail";
@@ -327,7 +327,7 @@ fn primitives(out: &mut Vec<u8>, lists: &[(&str, &[u8])]) {
 
 #[cfg(test)]
 mod tests {
-    use crate::record::*;
+    use super::*;
 
     fn model() -> ModelRecord {
         let (_, problem) = crate::load_scene("strip-channel", &[]).unwrap();

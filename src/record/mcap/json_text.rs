@@ -69,7 +69,7 @@ pub fn time(out: &mut Vec<u8>, ns: u64) {
 
 #[cfg(test)]
 mod tests {
-    use crate::record::*;
+    use super::*;
 
     #[test]
     fn pieces_are_valid_json() {

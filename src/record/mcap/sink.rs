@@ -9,17 +9,17 @@
 //! cause and stops the run; the half-written temporary file is then removed, and the mcap
 //! writer — which cannot recover from an error in the middle of a chunk — never sees it.
 
+use crate::model::Model;
 use crate::record::atomic_file::AtomicFile;
 pub use crate::record::mcap::format3::node_of_label;
 use crate::record::mcap::format3::Format3Writer;
 use crate::record::mcap::foxglove::{ScenePoint, SceneView};
 pub use crate::record::mcap::out::ChunkCompression;
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
+use crate::record::mcap::schemas;
 use crate::record::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
 use crate::record::pressure::{profiles, PressureLayout, PressureRecord};
-use crate::record::mcap::schemas;
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
-use crate::model::Model;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 use std::path::Path;

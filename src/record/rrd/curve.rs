@@ -12,8 +12,8 @@
 //! is logged in pieces of [`PIECE`] points, so a long run does not log its history again at
 //! every increment.
 
-use crate::record::rrd::style::{nice_ceiling, AXES, CURVE, GRID, SLIP, Y_UP_SCALE};
 use crate::format::plain;
+use crate::record::rrd::style::{nice_ceiling, AXES, CURVE, GRID, SLIP, Y_UP_SCALE};
 use rerun::RecordingStream;
 
 /// Width of the curve box (its height is 1).

@@ -6,11 +6,11 @@
 //! [`RerunView`] logs from records alone, so `contrail replay` rebuilds the same stream from
 //! an MCAP recording; [`RerunSink`] is the observer that feeds it during a run.
 
+use crate::model::Model;
 use crate::record::messages::{ModelRecord, PositionsMessage};
 pub use crate::record::rrd::view::{RerunView, FLUSH_TIMEOUT};
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use crate::record::{Observer, ObserverError, RunInfo, StepView};
-use crate::model::Model;
 use rerun::blueprint::components::{PanelState, PlayState};
 use rerun::blueprint::{
     Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial2DView, TextLogView, TimePanel, TimeSeriesView,

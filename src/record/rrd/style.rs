@@ -2,8 +2,8 @@
 //! the residual that is plotted and which contact points carry a label. Pure functions, so
 //! they are tested without a viewer.
 
-use crate::record::ContactPointRecord;
 use crate::contact::law::ContactState;
+use crate::record::ContactPointRecord;
 
 /// rerun's 2D views put +y downward. Every 2D entity of the view lives under one root
 /// (`/scene` for the model, `/curve` for the force–displacement curve) that carries this
@@ -148,7 +148,7 @@ pub fn nice_ceiling(x: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use crate::record::*;
+    use super::*;
 
     fn point(state: ContactState) -> ContactPointRecord {
         ContactPointRecord {

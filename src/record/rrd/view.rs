@@ -6,6 +6,7 @@
 //! (per Newton iteration, timeline `newton` only), `/plots/increment/**` (per increment:
 //! Newton iterations, final residual, load level; timeline `increment` only) and `/events/**`.
 
+use crate::format::{plain, sig};
 use crate::record::messages::{ModelRecord, PositionsMessage};
 use crate::record::rrd::curve::Curve;
 use crate::record::rrd::sink::RerunError;
@@ -13,8 +14,9 @@ use crate::record::rrd::style::{
     point_colour, point_label, relative_residual, traction_arrows, TractionArrows, ARROW_FRACTION,
     ARROW_OFFSET_FRACTION, MESH, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
 };
-use crate::record::{ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome};
-use crate::format::{plain, sig};
+use crate::record::{
+    ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome,
+};
 use rerun::RecordingStream;
 
 fn stream_err(e: impl std::fmt::Display) -> RerunError {

@@ -17,8 +17,8 @@
 //!
 //! The `.pvd` lists both per time step `t` (the load level) as `part` 0 and 1.
 
-use crate::record::ContactPointRecord;
 use crate::element::fields::CentreFields;
+use crate::record::ContactPointRecord;
 use base64::Engine;
 use std::io::{self, Write};
 

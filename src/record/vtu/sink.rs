@@ -4,11 +4,11 @@
 //! (increment 12). The `.pvd` is written when the run ends — also after a failure or an
 //! interruption — under a temporary name and renamed into place.
 
+use crate::element::fields::{centre_fields, CentreFields};
+use crate::model::Model;
 use crate::record::atomic_file::AtomicFile;
 use crate::record::vtu::file::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
 use crate::record::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
-use crate::element::fields::{centre_fields, CentreFields};
-use crate::model::Model;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
