@@ -6,6 +6,7 @@ pub mod element_check;
 mod line_search;
 pub mod monitor;
 pub mod newton;
+mod newton_failure;
 pub mod penetration;
 pub mod run;
 pub mod state;
