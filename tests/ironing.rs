@@ -15,11 +15,11 @@
 //!   steady sliding the drag vanishes — here it is −0.012 F_y (the die nears the block's
 //!   free end: not quite steady) on every mesh; with friction the ratio exceeds μ by the
 //!   share of the pressure on the die's inclined front (measured 1.18–1.25 μ over the
-//!   frictionless offset). Measured (2026-11-25): μ = 0.1: 0.1118, 0.1110, 0.1084; μ = 0.3:
-//!   0.3626, 0.3570, 0.3523 (coarse, medium, fine);
+//!   frictionless offset). Measured (2026-11-26, nominal step): μ = 0.1: 0.1124, 0.1101,
+//!   0.1087; μ = 0.3: 0.3626, 0.3570, 0.3567 (coarse, medium, fine);
 //! * the oscillation of the forces as block nodes enter and leave the contact: the largest
 //!   misfit of a cubic fit of F_x over t ∈ [2, 3], over the mean F_y — measured 4.7e-3,
-//!   1.3e-3, 3.8e-4 (μ = 0.3), falling as h²: node-to-segment against a smooth die.
+//!   1.3e-3, 3.6e-4 (μ = 0.3), falling as h²: node-to-segment against a smooth die.
 //!
 //! Asserted (release tier: coarse and medium at the nominal and half step, μ = 0, 0.1, 0.3;
 //! the full study adds the fine mesh and the quarter step, `-- --include-ignored`):
