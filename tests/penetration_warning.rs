@@ -23,17 +23,14 @@ mod common;
 use contrail::solver::penetration::DEEP_PENETRATION;
 
 fn run(eps_n: &str) -> (contrail::solver::RunSummary, contrail::record::Memory) {
-    let src = contrail::scene::SceneSource {
-        origin: "tests/data/point-through-plate.toml".into(),
-        text: include_str!("data/point-through-plate.toml").into(),
-    };
-    let sets = vec![
-        "rigid.P.move.y=[[0.0, 0.0], [1.0, -0.03]]".to_string(),
-        format!("contact.eps_n={eps_n}"),
-        "stepping.increments=4".to_string(),
+    let eps_n = format!("contact.eps_n={eps_n}");
+    let sets = [
+        "rigid.P.move.y=[[0.0, 0.0], [1.0, -0.03]]",
+        &eps_n,
+        "stepping.increments=4",
     ];
-    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
-    common::solve_ok(&contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}")))
+    let text = include_str!("data/point-through-plate.toml");
+    common::solve_ok(&common::scene_file("tests/data/point-through-plate.toml", text, &sets))
 }
 
 #[test]

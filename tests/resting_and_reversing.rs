@@ -32,13 +32,7 @@
 mod common;
 
 fn solve(origin: &str, text: &str, sets: &[&str]) -> (contrail::solver::RunSummary, contrail::record::Memory) {
-    let src = contrail::scene::SceneSource {
-        origin: origin.into(),
-        text: text.into(),
-    };
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
-    common::solve_ok(&contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}")))
+    common::solve_ok(&common::scene_file(origin, text, sets))
 }
 
 #[test]

@@ -63,13 +63,7 @@ type Outcome = (
 );
 
 fn solve(sets: &[&str]) -> Outcome {
-    let src = contrail::scene::SceneSource {
-        origin: "tests/data/sheet-on-facet.toml".into(),
-        text: SCENE.into(),
-    };
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
-    common::solve(&contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}")))
+    common::solve(&common::scene_file("tests/data/sheet-on-facet.toml", SCENE, sets))
 }
 
 #[test]

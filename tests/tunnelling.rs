@@ -29,13 +29,7 @@ fn run(
     Result<contrail::solver::RunSummary, contrail::solver::SolveError>,
     contrail::record::Memory,
 ) {
-    let src = contrail::scene::SceneSource {
-        origin: "tests/data/point-through-plate.toml".into(),
-        text: SCENE.into(),
-    };
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
-    common::solve(&contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}")))
+    common::solve(&common::scene_file("tests/data/point-through-plate.toml", SCENE, sets))
 }
 
 #[test]

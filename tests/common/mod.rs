@@ -22,6 +22,17 @@ pub fn scene_text(text: &str) -> Problem {
     contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// Load a scene file's text (`origin`: its path, named in errors) with `--set` overrides.
+pub fn scene_file(origin: &str, text: &str, sets: &[&str]) -> Problem {
+    let src = contrail::scene::SceneSource {
+        origin: origin.into(),
+        text: text.into(),
+    };
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let file = contrail::scene::parse(&src, &sets).unwrap_or_else(|e| panic!("{e}"));
+    contrail::scene::build(&src, &file).unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// The error message of a scene in TOML text that does not load.
 pub fn scene_text_err(text: &str) -> String {
     let src = contrail::scene::SceneSource {
