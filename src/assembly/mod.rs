@@ -445,15 +445,17 @@ impl Assembler {
                 &mut self.missing,
                 &self.dofs,
             );
-            contact.evaluate(&cfg, &mut |nodes, r, k| {
+            contact.evaluate(&cfg, &mut |nodes, r, k, fixed_scale| {
                 let nd = 2 * nodes.len();
                 let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
-                let position = |j: usize| (model.nodes[nodes[j / 2]][j % 2] + u[dof(j)]).abs();
+                // a node's coordinate, or the rigid geometry's when that is larger
+                let position = |j: usize| (model.nodes[nodes[j / 2]][j % 2] + u[dof(j)]).abs().max(fixed_scale);
                 for i in 0..nd {
                     r_full[dof(i)] += r[i];
                     // a penalty force is ε times a difference of positions, each known to
-                    // ε_mach |x|: its round-off is ε_mach Σ_j |K_ij| |x_j| (the residual
-                    // criterion's floor, `roundoff`, is 1e-13 times this sum)
+                    // ε_mach |x| (the nodes', and the rigid slave's or master's that enter
+                    // the gap, `fixed_scale`): its round-off is ε_mach Σ_j |K_ij| |x_j| (the
+                    // residual criterion's floor, `roundoff`, is 1e-13 times this sum)
                     let k_x: f64 = (0..nd).map(|j| k[nd * i + j].abs() * position(j)).sum();
                     r_abs[dof(i)] += r[i].abs() + CONTACT_ROUNDOFF * k_x;
                 }

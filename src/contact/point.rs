@@ -157,6 +157,33 @@ fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
 }
 
 impl PointProblem {
+    /// The largest magnitude of the coordinates that enter this point's gap and slip without
+    /// being node slots: a rigid slave's position, a rigid master piece's points (an arc's
+    /// centre plus its radius) with their offset, for `B` and the history segment `A`; 0 when
+    /// every coordinate is a node. A penalty force is `ε` times a difference of such
+    /// coordinates, so its round-off is `≈ ε ε_mach` times this (plus the nodes' own
+    /// magnitudes, which the assembler takes from the node positions): a rigid arc of radius
+    /// 1 centred 1 above a slave node at the origin cancels `|x − c| − R` at magnitude 2
+    /// although `|x| = 0`.
+    pub fn fixed_coordinate_scale(&self) -> f64 {
+        let piece_scale = |s: &SegSource| match s {
+            SegSource::Rigid(Piece::Segment { a, b }, o) => {
+                let m = |p: &[f64; 2]| (p[0] + o[0]).hypot(p[1] + o[1]);
+                m(a).max(m(b))
+            }
+            SegSource::Rigid(Piece::Arc { centre, radius, .. }, o) => {
+                (centre[0] + o[0]).hypot(centre[1] + o[1]) + radius.abs()
+            }
+            _ => 0.0,
+        };
+        let slave = match self.slave {
+            SlaveSource::Fixed(p) => p[0].hypot(p[1]),
+            SlaveSource::Node(_) => 0.0,
+        };
+        let history = self.closed.as_ref().map_or(0.0, |c| piece_scale(&c.seg_a));
+        slave.max(piece_scale(&self.seg_b)).max(history)
+    }
+
     /// Evaluate gap, projection, trial and returned traction for node positions `q`.
     pub fn evaluate<S: Scalar>(&self, q: &[V2<S>]) -> PointEval<S> {
         let rs = self.slave_position(q);

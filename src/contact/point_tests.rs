@@ -482,3 +482,30 @@ fn hermite_face_tangents_match_fd_in_every_state() {
     p.closed.as_mut().unwrap().seg_a = SegSource::Hermite([Some(0), Some(1), Some(2), Some(3)]);
     fd_check(&p, ContactState::Slip);
 }
+
+#[test]
+fn fixed_coordinate_scale_is_the_rigid_geometry_entering_the_gap() {
+    // every coordinate a node: nothing fixed
+    assert_eq!(base(Continuous, LAW, 0.0).fixed_coordinate_scale(), 0.0);
+    // an arc of radius 1 centred 1 above, offset by (3, 4): |c + o| + R = 5 + 1
+    let arc = Piece::Arc {
+        centre: [0.0, 1.0],
+        radius: 1.0,
+        theta0: -2.5,
+        theta1: -0.6,
+    };
+    let mut p = base(Continuous, LAW, 0.0);
+    p.seg_b = SegSource::Rigid(arc, [3.0, 3.0]);
+    assert!((p.fixed_coordinate_scale() - 6.0).abs() < 1e-12);
+    // a straight piece: its farther end; a rigid slave point: its distance from the origin
+    p.seg_b = SegSource::Rigid(
+        Piece::Segment {
+            a: [-1.0, 0.0],
+            b: [7.0, 0.0],
+        },
+        [1.0, 0.0],
+    );
+    assert_eq!(p.fixed_coordinate_scale(), 8.0);
+    p.slave = SlaveSource::Fixed([0.0, -9.0]);
+    assert_eq!(p.fixed_coordinate_scale(), 9.0);
+}

@@ -43,7 +43,7 @@ pub struct ContactSystem {
 }
 
 /// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
-pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64]) + 'a;
+pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64], f64) + 'a;
 
 /// Local node slots of one contact point (at most [`MAX_NODES`], kept on the stack: the
 /// contact evaluation allocates nothing per point and iteration).
@@ -399,7 +399,7 @@ impl ContactSystem {
                 let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
                 now.eval = Some(e);
                 if e.state != ContactState::Open && nd > 0 {
-                    assemble(slots.nodes(), &r[..nd], &k[..nd * nd]);
+                    assemble(slots.nodes(), &r[..nd], &k[..nd * nd], problem.fixed_coordinate_scale());
                 }
             }
         }
@@ -414,7 +414,7 @@ impl ContactSystem {
     /// and the tangent is singular); and a point driven through its master in the first
     /// increment is found on the far side, not lost (see [`Self::tunnelled`]).
     pub fn start_from_initial_configuration(&mut self, cfg: &Config) {
-        self.evaluate(cfg, &mut |_, _, _| {});
+        self.evaluate(cfg, &mut |_, _, _, _| {});
         self.commit(cfg);
         self.reset_current();
         self.tunnelled.clear();
