@@ -3,6 +3,7 @@
 pub mod active_set;
 pub mod augmented;
 pub mod element_check;
+pub mod friction_limit;
 mod line_search;
 pub mod monitor;
 pub mod newton;

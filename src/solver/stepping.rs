@@ -3,6 +3,7 @@
 //! records to the observer, grow the step back toward the nominal one.
 
 use super::augmented::solve_augmented;
+use super::friction_limit::friction_limit;
 use super::newton::{Converged, IncrementTarget, NewtonFailure, Workspace};
 use super::run::{RunSummary, SolveError, UnstableSummary};
 use super::state::TrialState;
@@ -10,8 +11,8 @@ use crate::assembly::Assembler;
 use crate::contact::system::Config;
 use crate::model::Model;
 use crate::record::{
-    ChangingPoint, ContactPointRecord, CrossingRecord, IncrementRecord, LogLevel, LogRecord, MonitorRecord, Observer,
-    ObserverError, StepView,
+    ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
+    MonitorRecord, Observer, ObserverError, StepView,
 };
 use crate::settings::{Predictor, SolverSettings, TangentCheckWhen};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -358,7 +359,7 @@ impl<'a> Stepping<'a> {
                 t: t_new,
                 dt,
                 cutbacks,
-                reason: f.to_string(),
+                reason: self.failure_reason(&f),
                 residuals: self.ws.residuals.clone(),
                 kind: f.kind(),
                 points: self.ws.watch.report(&trial.contact, model, 8),
@@ -370,6 +371,20 @@ impl<'a> Stepping<'a> {
         self.summary.cutbacks += 1;
         self.streak = 0;
         Ok(())
+    }
+
+    /// What the run's failure says: the Newton failure, and when the increment may have no
+    /// solution at all because a body is at its friction limit, that diagnosis
+    /// ([`friction_limit`]).
+    fn failure_reason(&self, f: &NewtonFailure) -> String {
+        let may_lack_a_solution = matches!(
+            f.kind(),
+            FailureKind::NoConvergence | FailureKind::Diverged | FailureKind::LinearSolver | FailureKind::NonFinite
+        );
+        match may_lack_a_solution.then(|| friction_limit(self.model, &self.committed.contact, self.t)) {
+            Some(Some(hint)) => format!("{f}; {hint}"),
+            _ => f.to_string(),
+        }
     }
 
     /// Make the converged increment the committed state: records of the converged iterate
