@@ -14,47 +14,69 @@
 //! reports a force that is mostly penalty error. With ε_N = 1e6 the overlap is a small
 //! fraction of the element.
 //!
-//! Asserted: with ε_N = 10 the summary's deepest penetration is beyond 0.1 of the element
-//! size (measured ≈ 0.8), names the pair, and the log carries the warning once; with
-//! ε_N = 1e6 the summary has no such entry.
+//! Asserted on 40 × 4 (4 and 8 increments) and 80 × 8 (4 increments): with ε_N = 10 the
+//! summary's deepest penetration is beyond 0.1 of the element size (measured 0.79, 0.79 and
+//! 1.56: the overlap stays 0.0196 while the element halves), names the pair, and the log
+//! carries the warning once; with ε_N = 1e6 the summary has no such entry.
 
 mod common;
 
 use contrail::solver::penetration::DEEP_PENETRATION;
 
-fn run(eps_n: &str) -> (contrail::solver::RunSummary, contrail::record::Memory) {
-    let eps_n = format!("contact.eps_n={eps_n}");
+/// The point pressed `depth` down (0.01 above the plate) with `eps_n` on `elements` in
+/// `increments`.
+fn run(
+    eps_n: &str,
+    elements: [usize; 2],
+    increments: usize,
+    depth: f64,
+) -> (contrail::solver::RunSummary, contrail::record::Memory) {
     let sets = [
-        "rigid.P.move.y=[[0.0, 0.0], [1.0, -0.03]]",
-        &eps_n,
-        "stepping.increments=4",
+        format!("rigid.P.move.y=[[0.0, 0.0], [1.0, -{depth}]]"),
+        format!("contact.eps_n={eps_n}"),
+        format!("stepping.increments={increments}"),
+        format!("body.plate.mesh.elements=[{}, {}]", elements[0], elements[1]),
     ];
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
     let text = include_str!("data/point-through-plate.toml");
     common::solve_ok(&common::scene_file("tests/data/point-through-plate.toml", text, &sets))
 }
 
 #[test]
 fn soft_penalty_is_reported_as_deep_penetration() {
-    let (summary, m) = run("10");
-    let p = summary.deep_penetration.expect("no penetration warning");
-    println!("ε_N = 10: depth {:.4e}, ratio {:.3}", p.depth, p.ratio);
-    assert!(p.ratio > DEEP_PENETRATION, "{p:?}");
-    assert_eq!(p.pair, "point");
-    let warnings = m
-        .logs
-        .iter()
-        .filter(|l| l.message.contains("penetrates its master"))
-        .count();
-    assert_eq!(
-        warnings,
-        1,
-        "{:#?}",
-        m.logs.iter().map(|l| &l.message).collect::<Vec<_>>()
-    );
+    for (elements, increments) in [([40, 4], 4), ([80, 8], 4), ([40, 4], 8)] {
+        let (summary, m) = run("10", elements, increments, 0.03);
+        let p = summary.deep_penetration.expect("no penetration warning");
+        println!(
+            "ε_N = 10, {elements:?}, {increments} increments: depth {:.4e}, ratio {:.3}",
+            p.depth, p.ratio
+        );
+        assert!(p.ratio > DEEP_PENETRATION, "{p:?}");
+        assert_eq!(p.pair, "point");
+        let warnings = m
+            .logs
+            .iter()
+            .filter(|l| l.message.contains("penetrates its master"))
+            .count();
+        assert_eq!(
+            warnings,
+            1,
+            "{:#?}",
+            m.logs.iter().map(|l| &l.message).collect::<Vec<_>>()
+        );
+    }
 }
 
 #[test]
 fn stiff_penalty_is_not_reported() {
-    let (summary, _) = run("1e6");
-    assert!(summary.deep_penetration.is_none(), "{:?}", summary.deep_penetration);
+    // 0.015 down on 80 × 8: 0.03 (1.6 elements deep under a point load) inverts the element
+    // under the point there (`tunnelling.rs`)
+    for (elements, increments, depth) in [([40, 4], 4, 0.03), ([40, 4], 8, 0.03), ([80, 8], 4, 0.015)] {
+        let (summary, _) = run("1e6", elements, increments, depth);
+        assert!(
+            summary.deep_penetration.is_none(),
+            "{elements:?}: {:?}",
+            summary.deep_penetration
+        );
+    }
 }
