@@ -1,0 +1,200 @@
+//! The steps of [`super::build_model`], one per part of the scene, each adding to the model
+//! what its part of the scene file describes (and refusing what it cannot build, naming the
+//! entry and the fix).
+
+use super::*;
+
+/// The deformable bodies: material, mesh (nodes, elements, node sets and faces, numbered
+/// after the bodies before); records each body's mesh file in `cx` for later messages.
+pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(), SceneError> {
+    let mut mesh_files = Vec::new();
+    for b in &s.bodies {
+        if m.bodies.iter().any(|o| o.name == b.name) {
+            return Err(cx.err(
+                &b.name,
+                format!("two bodies are named `{}`", b.name),
+                "give each body its own name",
+            ));
+        }
+        let mat = &b.material;
+        if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
+                "fix [body.material]",
+            ));
+        }
+        let (lambda, mu) = lame(mat.young, mat.poisson);
+        let material = match mat.model {
+            MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
+            MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
+        };
+        let mesh = body_mesh(cx.src, b)?;
+        let dofs = 2 * (m.nodes.len() + mesh.nodes.len());
+        if dofs > s.limits.max_dofs {
+            return Err(cx.err(
+                &b.name,
+                format!(
+                    "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
+                    b.name, s.limits.max_dofs
+                ),
+                "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
+            ));
+        }
+        mesh_files.push(mesh.file.clone());
+        let off = m.nodes.len();
+        let bi = m.bodies.len();
+        m.nodes.extend(mesh.nodes.iter().copied());
+        m.elements.extend(mesh.quads.iter().map(|q| Element {
+            nodes: q.map(|n| n + off),
+            body: bi,
+        }));
+        m.bodies.push(Body {
+            name: b.name.clone(),
+            material,
+            kind: b.element,
+            first_node: off,
+            node_count: mesh.nodes.len(),
+            node_sets: mesh
+                .node_sets
+                .into_iter()
+                .map(|(k, v)| (k, v.into_iter().map(|n| n + off).collect()))
+                .collect(),
+            faces: mesh
+                .faces
+                .into_iter()
+                .map(|(k, v)| (k, v.into_iter().map(|s| s.map(|n| n + off)).collect()))
+                .collect(),
+        });
+    }
+    cx.mesh_files = mesh_files;
+    Ok(())
+}
+
+/// The prescribed displacements (`[[fix]]`); a component prescribed twice is refused.
+pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
+    let mut fixed = vec![false; m.dof_count()];
+    for f in &s.fixes {
+        let bi = body_index(cx, m, &f.body)?;
+        for n in select(cx, m, bi, &f.nodes)? {
+            for &c in &f.components {
+                let dof = 2 * n + comp(c);
+                if fixed[dof] {
+                    return Err(cx.err(
+                        &f.body,
+                        format!("node {n} component {c:?} of `{}` is prescribed twice", f.body),
+                        "remove the overlap between [[fix]] entries",
+                    ));
+                }
+                fixed[dof] = true;
+                m.prescribed.push(Prescribed {
+                    dof,
+                    ramp: ramp(&f.value, end),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The nodal loads (`[[load]]`: a total shared equally by the selected nodes) and the body
+/// loads.
+pub(super) fn add_loads(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
+    for l in &s.loads {
+        let bi = body_index(cx, m, &l.body)?;
+        let nodes = select(cx, m, bi, &l.nodes)?;
+        let share = 1.0 / nodes.len() as f64;
+        let mut r = ramp(&l.total, end);
+        r.knots.iter_mut().for_each(|k| k.1 *= share);
+        for n in nodes {
+            m.loads.push(NodalLoad {
+                dof: 2 * n + comp(l.component),
+                ramp: r.clone(),
+            });
+        }
+    }
+    for bl in &s.body_loads {
+        body_load(cx, m, bl, end)?;
+    }
+    Ok(())
+}
+
+/// The rigid bodies: shape and motion.
+pub(super) fn add_rigid(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
+    for r in &s.rigid {
+        let shape = rigid_shape(cx, r)?;
+        let mv = |o: &Option<RampSpec>| o.as_ref().map_or(Ramp::constant(0.0), |x| ramp(x, end));
+        m.rigid.push(RigidBody {
+            name: r.name.clone(),
+            shape,
+            motion: [mv(&r.motion.x), mv(&r.motion.y)],
+        });
+    }
+    Ok(())
+}
+
+/// The contact pairs of the scene, then the pairs they imply (second passes, the vertices of
+/// rigid outlines not named as slaves elsewhere), and the vertex regions each pair owns.
+pub(super) fn add_contacts(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(), SceneError> {
+    let h = max_edge(m);
+    let mut implied = Vec::new();
+    for c in &s.contacts {
+        refuse_rounded_vertex(cx, s, c)?;
+        let mut pair = contact_pair(cx, m, c, h)?;
+        implied.extend(build_pairs::implied_pairs(cx, m, c, &mut pair)?);
+        m.contacts.push(pair);
+    }
+    // the vertices a scene names as slaves keep their pairs; the others get one per outline
+    let taken: Vec<(usize, usize)> = m
+        .contacts
+        .iter()
+        .flat_map(|p| p.slaves.iter())
+        .filter_map(|s| match s {
+            Slave::RigidVertex(b, v) => Some((*b, *v)),
+            _ => None,
+        })
+        .collect();
+    for (pair, slave_body) in implied {
+        match pair {
+            build_pairs::Implied::SecondPass(p) => m.contacts.push(*p),
+            build_pairs::Implied::Vertices(ip) => {
+                if let Some(p) = build_pairs::vertex_pair(m, &m.contacts[ip], slave_body, &taken) {
+                    m.contacts.push(p);
+                }
+            }
+        }
+    }
+    build_pairs::own_vertices(m);
+    Ok(())
+}
+
+/// The monitors: a rigid body's travel and force, or a node set's mean displacement and
+/// summed reaction.
+pub(super) fn add_monitors(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(), SceneError> {
+    for mon in s.monitors.iter() {
+        let target = match (&mon.rigid, &mon.body, &mon.nodes) {
+            (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(cx, m, r)?),
+            (None, Some(b), Some(sel)) => {
+                let bi = body_index(cx, m, b)?;
+                MonitorTarget::Nodes(select(cx, m, bi, sel)?)
+            }
+            _ => {
+                return Err(cx.err(
+                    &mon.label,
+                    format!(
+                        "monitor `{}` needs either `rigid` or both `body` and `nodes`",
+                        mon.label
+                    ),
+                    "e.g. `rigid = \"punch\"`, or `body = \"block\"` with `nodes = \"top\"`",
+                ))
+            }
+        };
+        m.monitors.push(Monitor {
+            label: mon.label.clone(),
+            target,
+            component: comp(mon.component),
+            sign: mon.sign,
+        });
+    }
+    Ok(())
+}
