@@ -68,6 +68,93 @@ fn record_of(run: &PlannedRun, plan: &Plan, outcome: crate::study::StudyOutcome)
     }
 }
 
+/// Every selected run must load and check before any runs.
+fn check_runs(selected: &[&PlannedRun]) -> Result<(), SweepError> {
+    for r in selected {
+        Study::new(r.scene.clone(), r.sets.clone())
+            .check()
+            .map_err(|source| SweepError::BadRun {
+                id: r.id.clone(),
+                sets: r.sets.join(" "),
+                source: Box::new(source),
+            })?;
+    }
+    Ok(())
+}
+
+/// The output folder with its `runs/` and the plan as run (`plan.json`).
+fn prepare_folder(out: &Path, plan: &Plan) -> Result<(), SweepError> {
+    std::fs::create_dir_all(out.join("runs")).map_err(io(out))?;
+    let plan_json = serde_json::to_string_pretty(plan).map_err(|e| SweepError::Index {
+        path: out.join("plan.json").display().to_string(),
+        message: e.to_string(),
+    })?;
+    write_atomic(&out.join("plan.json"), plan_json.as_bytes())
+}
+
+/// The records already in `out` of the selected runs that finished (an interrupted run is
+/// made again).
+fn finished_runs(out: &Path, selected: &[&PlannedRun]) -> BTreeMap<String, RunRecord> {
+    let wanted: BTreeMap<&str, &PlannedRun> = selected.iter().map(|r| (r.id.as_str(), *r)).collect();
+    read_records(out)
+        .into_iter()
+        .filter(|r| wanted.contains_key(r.id.as_str()) && !matches!(r.outcome.status, Status::Interrupted { .. }))
+        .map(|r| (r.id.clone(), r))
+        .collect()
+}
+
+/// Worker threads: `jobs`, or one per core when 0, never more than the runs to make.
+fn worker_count(jobs: usize, pending: usize) -> usize {
+    let jobs = if jobs == 0 {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        jobs
+    };
+    jobs.min(pending.max(1))
+}
+
+/// The progress line of the `k`-th finished run of `total`.
+fn progress_line(k: usize, total: usize, run: &PlannedRun, outcome: &crate::study::StudyOutcome) -> String {
+    let params: Vec<String> = run.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    let failure = match &outcome.status {
+        Status::Failed { kind, increment, .. } => format!(" ({kind} at increment {increment})"),
+        _ => String::new(),
+    };
+    format!(
+        "[{k}/{total}] {} {} {}{failure} ({:.2} s)",
+        run.id,
+        params.join(" "),
+        outcome.status.name(),
+        outcome.figures.wall_time_s
+    )
+}
+
+/// One worker thread: takes the next pending run until none is left or `stop` is set, runs
+/// it recorded into `opts.out/runs/ID.mcap`, and sends its result.
+fn worker<'a>(
+    pending: &[&'a PlannedRun],
+    next: &AtomicUsize,
+    opts: &SweepOptions,
+    stop: &AtomicBool,
+    tx: mpsc::Sender<(
+        &'a PlannedRun,
+        Result<crate::study::StudyOutcome, crate::study::StudyError>,
+    )>,
+) {
+    while !stop.load(Ordering::Relaxed) {
+        let k = next.fetch_add(1, Ordering::SeqCst);
+        let Some(run) = pending.get(k) else { break };
+        let ro = RunOptions {
+            mcap: Some(opts.out.join("runs").join(format!("{}.mcap", run.id))),
+            positions_every: opts.positions_every,
+        };
+        let result = Study::new(run.scene.clone(), run.sets.clone()).run(&ro, &mut [], stop);
+        if tx.send((*run, result)).is_err() {
+            break;
+        }
+    }
+}
+
 /// Run `plan` (or its shard) into `opts.out`. `progress` gets one line per finished run.
 /// Stops taking new runs when `stop` is set; runs under way end as interrupted and are not
 /// recorded as finished (a later call makes them again).
@@ -82,28 +169,10 @@ pub fn run_sweep(
         .iter()
         .filter(|r| opts.shard.is_none_or(|s| s.contains(r.ordinal)))
         .collect();
-    for r in &selected {
-        Study::new(r.scene.clone(), r.sets.clone())
-            .check()
-            .map_err(|source| SweepError::BadRun {
-                id: r.id.clone(),
-                sets: r.sets.join(" "),
-                source: Box::new(source),
-            })?;
-    }
+    check_runs(&selected)?;
     let out = &opts.out;
-    std::fs::create_dir_all(out.join("runs")).map_err(io(out))?;
-    let plan_json = serde_json::to_string_pretty(plan).map_err(|e| SweepError::Index {
-        path: out.join("plan.json").display().to_string(),
-        message: e.to_string(),
-    })?;
-    write_atomic(&out.join("plan.json"), plan_json.as_bytes())?;
-    let wanted: BTreeMap<&str, &PlannedRun> = selected.iter().map(|r| (r.id.as_str(), *r)).collect();
-    let mut done: BTreeMap<String, RunRecord> = read_records(out)
-        .into_iter()
-        .filter(|r| wanted.contains_key(r.id.as_str()) && !matches!(r.outcome.status, Status::Interrupted { .. }))
-        .map(|r| (r.id.clone(), r))
-        .collect();
+    prepare_folder(out, plan)?;
+    let mut done = finished_runs(out, &selected);
     let pending: Vec<&PlannedRun> = selected.iter().copied().filter(|r| !done.contains_key(&r.id)).collect();
     let skipped = selected.len() - pending.len();
     let stem = index_stem(opts.shard);
@@ -114,12 +183,7 @@ pub fn run_sweep(
         Ok((csv, json, rows))
     };
     let (mut csv, mut json, mut rows) = write(&done)?;
-    let jobs = if opts.jobs == 0 {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    } else {
-        opts.jobs
-    }
-    .min(pending.len().max(1));
+    let jobs = worker_count(opts.jobs, pending.len());
     // one solve per core: no spinning helper threads besides them
     if jobs > 1 {
         crate::assembly::helper::set_allowed(false);
@@ -133,43 +197,13 @@ pub fn run_sweep(
         for _ in 0..jobs {
             let tx = tx.clone();
             let (next, pending) = (&next, &pending);
-            scope.spawn(move || loop {
-                if stop.load(Ordering::Relaxed) {
-                    break;
-                }
-                let k = next.fetch_add(1, Ordering::SeqCst);
-                let Some(run) = pending.get(k) else { break };
-                let ro = RunOptions {
-                    mcap: Some(out.join("runs").join(format!("{}.mcap", run.id))),
-                    positions_every: opts.positions_every,
-                };
-                let result = Study::new(run.scene.clone(), run.sets.clone()).run(&ro, &mut [], stop);
-                if tx.send((*run, result)).is_err() {
-                    break;
-                }
-            });
+            scope.spawn(move || worker(pending, next, opts, stop, tx));
         }
         drop(tx);
         for (run, result) in rx {
             match result {
                 Ok(outcome) => {
-                    let line = format!(
-                        "[{}/{}] {} {} {}{} ({:.2} s)",
-                        done.len() + 1,
-                        selected.len(),
-                        run.id,
-                        run.params
-                            .iter()
-                            .map(|(k, v)| format!("{k}={v}"))
-                            .collect::<Vec<_>>()
-                            .join(" "),
-                        outcome.status.name(),
-                        match &outcome.status {
-                            Status::Failed { kind, increment, .. } => format!(" ({kind} at increment {increment})"),
-                            _ => String::new(),
-                        },
-                        outcome.figures.wall_time_s
-                    );
+                    let line = progress_line(done.len() + 1, selected.len(), run, &outcome);
                     if let Status::Interrupted { .. } = outcome.status {
                         interrupted = true;
                         progress(&line);
