@@ -35,55 +35,98 @@ pub enum Root {
 /// pseudo-peripheral node (repeated breadth-first searches from a minimum-degree node), or
 /// from the deepest level seen from it (see [`Root`]).
 pub fn reverse_cuthill_mckee(n: usize, col_ptr: &[usize], row_idx: &[usize], root: Root) -> Vec<usize> {
-    let adj = |v: usize| {
-        row_idx[col_ptr[v]..col_ptr[v + 1]]
+    let mut rcm = Rcm::new(n, col_ptr, row_idx);
+    while rcm.order.len() < n {
+        let s = rcm.pseudo_peripheral();
+        let first = rcm.order.len();
+        if root == Root::FarLevel {
+            rcm.place_far_level(s);
+        } else {
+            rcm.order.push(s);
+            rcm.placed[s] = true;
+        }
+        rcm.cuthill_mckee(first);
+    }
+    rcm.order.reverse();
+    rcm.order
+}
+
+/// The working state of [`reverse_cuthill_mckee`]: the pattern, the degrees, the order so
+/// far, and the scratch of the breadth-first searches (`level` is `usize::MAX` outside a
+/// search).
+struct Rcm<'a> {
+    col_ptr: &'a [usize],
+    row_idx: &'a [usize],
+    degree: Vec<usize>,
+    placed: Vec<bool>,
+    order: Vec<usize>,
+    level: Vec<usize>,
+    queue: Vec<usize>,
+}
+
+impl<'a> Rcm<'a> {
+    fn new(n: usize, col_ptr: &'a [usize], row_idx: &'a [usize]) -> Self {
+        let mut rcm = Rcm {
+            col_ptr,
+            row_idx,
+            degree: Vec::new(),
+            placed: vec![false; n],
+            order: Vec::with_capacity(n),
+            level: vec![usize::MAX; n],
+            queue: Vec::with_capacity(n),
+        };
+        rcm.degree = (0..n).map(|v| rcm.adj(v).count()).collect();
+        rcm
+    }
+
+    /// The neighbours of `v` (itself left out).
+    fn adj(&self, v: usize) -> impl Iterator<Item = usize> + 'a {
+        let row_idx: &'a [usize] = self.row_idx;
+        row_idx[self.col_ptr[v]..self.col_ptr[v + 1]]
             .iter()
             .copied()
             .filter(move |&w| w != v)
-    };
-    let degree: Vec<usize> = (0..n).map(|v| adj(v).count()).collect();
-    let mut placed = vec![false; n];
-    let mut order = Vec::with_capacity(n);
-    let mut level = vec![usize::MAX; n];
-    let mut queue = Vec::with_capacity(n);
-    // breadth-first levels from `s` within the unplaced nodes: (last node reached, depth)
-    let bfs = |s: usize, placed: &[bool], level: &mut Vec<usize>, queue: &mut Vec<usize>| {
-        queue.clear();
-        queue.push(s);
-        level[s] = 0;
+    }
+
+    /// Breadth-first levels from `s` within the unplaced nodes, leaving the search in
+    /// `queue`: the lowest-degree node of the deepest level, and that depth.
+    fn bfs(&mut self, s: usize) -> (usize, usize) {
+        self.queue.clear();
+        self.queue.push(s);
+        self.level[s] = 0;
         let mut head = 0;
-        while head < queue.len() {
-            let v = queue[head];
+        while head < self.queue.len() {
+            let v = self.queue[head];
             head += 1;
-            for w in adj(v) {
-                if !placed[w] && level[w] == usize::MAX {
-                    level[w] = level[v] + 1;
-                    queue.push(w);
+            for w in self.adj(v) {
+                if !self.placed[w] && self.level[w] == usize::MAX {
+                    self.level[w] = self.level[v] + 1;
+                    self.queue.push(w);
                 }
             }
         }
-        let last = queue
-            .iter()
-            .copied()
-            .filter(|&v| level[v] == level[*queue.last().expect("s")])
-            .min_by_key(|&v| degree[v])
+        let deepest = self.level[*self.queue.last().expect("s")];
+        let last = (self.queue.iter().copied())
+            .filter(|&v| self.level[v] == deepest)
+            .min_by_key(|&v| self.degree[v])
             .expect("non-empty");
-        let depth = level[last];
-        for &v in queue.iter() {
-            level[v] = usize::MAX;
+        for &v in self.queue.iter() {
+            self.level[v] = usize::MAX;
         }
-        (last, depth)
-    };
-    while order.len() < n {
-        let start = (0..n)
-            .filter(|&v| !placed[v])
-            .min_by_key(|&v| degree[v])
+        (last, deepest)
+    }
+
+    /// A pseudo-peripheral node of the unplaced component of a minimum-degree node: move to
+    /// the far end while the eccentricity grows (at most 8 searches).
+    fn pseudo_peripheral(&mut self) -> usize {
+        let start = (0..self.placed.len())
+            .filter(|&v| !self.placed[v])
+            .min_by_key(|&v| self.degree[v])
             .expect("a node left");
-        // pseudo-peripheral node: move to the far end while the eccentricity grows
-        let (mut far, mut depth) = bfs(start, &placed, &mut level, &mut queue);
+        let (mut far, mut depth) = self.bfs(start);
         let mut s = start;
         for _ in 0..8 {
-            let (far2, d2) = bfs(far, &placed, &mut level, &mut queue);
+            let (far2, d2) = self.bfs(far);
             s = far;
             if d2 <= depth {
                 break;
@@ -91,81 +134,81 @@ pub fn reverse_cuthill_mckee(n: usize, col_ptr: &[usize], row_idx: &[usize], roo
             far = far2;
             depth = d2;
         }
-        // Cuthill–McKee from s (or from the level farthest from it): neighbours in order of
-        // increasing degree
-        let first = order.len();
-        if root == Root::FarLevel {
-            let (_, far_depth) = bfs(s, &placed, &mut level, &mut queue);
-            // `queue` still lists the search from s, in breadth-first order: its tail is the
-            // deepest level (recompute the levels, which `bfs` reset)
-            let mut depth_of = vec![0usize; queue.len()];
-            for (k, &v) in queue.iter().enumerate() {
-                level[v] = k;
-            }
-            for k in 1..queue.len() {
-                let v = queue[k];
-                depth_of[k] = adj(v)
-                    .filter(|&w| level[w] < k)
-                    .map(|w| depth_of[level[w]] + 1)
-                    .min()
-                    .unwrap_or(0);
-            }
-            let mut far: Vec<usize> = queue
-                .iter()
-                .zip(&depth_of)
-                .filter(|(_, &d)| d == far_depth)
-                .map(|(&v, _)| v)
-                .collect();
-            for &v in queue.iter() {
-                level[v] = usize::MAX;
-            }
-            // the level in its own breadth-first order (along it) from its lowest-degree end,
-            // so that the next levels keep its order
-            far.sort_unstable_by_key(|&w| (degree[w], w));
-            for &v in &far {
-                level[v] = 0;
-            }
-            for &start in &far {
-                if placed[start] {
-                    continue;
-                }
-                let mut head = order.len();
-                order.push(start);
-                placed[start] = true;
-                while head < order.len() {
-                    let v = order[head];
-                    head += 1;
-                    let mut along: Vec<usize> = adj(v).filter(|&w| level[w] == 0 && !placed[w]).collect();
-                    along.sort_unstable_by_key(|&w| (degree[w], w));
-                    for w in along {
-                        placed[w] = true;
-                        order.push(w);
-                    }
-                }
-            }
-            for &v in &far {
-                level[v] = usize::MAX;
-            }
-        } else {
-            order.push(s);
-            placed[s] = true;
+        s
+    }
+
+    /// Place the deepest level of the search from `s` ([`Root::FarLevel`]), in its own
+    /// breadth-first order along it from its lowest-degree end, so that the next levels keep
+    /// its order.
+    fn place_far_level(&mut self, s: usize) {
+        let (_, far_depth) = self.bfs(s);
+        // `queue` still lists the search from s, in breadth-first order: its tail is the
+        // deepest level (recompute the levels, which `bfs` reset)
+        let mut depth_of = vec![0usize; self.queue.len()];
+        for (k, &v) in self.queue.iter().enumerate() {
+            self.level[v] = k;
         }
+        for k in 1..self.queue.len() {
+            let v = self.queue[k];
+            depth_of[k] = (self.adj(v))
+                .filter(|&w| self.level[w] < k)
+                .map(|w| depth_of[self.level[w]] + 1)
+                .min()
+                .unwrap_or(0);
+        }
+        let mut far: Vec<usize> = (self.queue.iter().zip(&depth_of))
+            .filter(|(_, &d)| d == far_depth)
+            .map(|(&v, _)| v)
+            .collect();
+        for &v in self.queue.iter() {
+            self.level[v] = usize::MAX;
+        }
+        far.sort_unstable_by_key(|&w| (self.degree[w], w));
+        for &v in &far {
+            self.level[v] = 0;
+        }
+        for &start in &far {
+            if self.placed[start] {
+                continue;
+            }
+            let mut head = self.order.len();
+            self.order.push(start);
+            self.placed[start] = true;
+            while head < self.order.len() {
+                let v = self.order[head];
+                head += 1;
+                let mut along: Vec<usize> = (self.adj(v))
+                    .filter(|&w| self.level[w] == 0 && !self.placed[w])
+                    .collect();
+                along.sort_unstable_by_key(|&w| (self.degree[w], w));
+                for w in along {
+                    self.placed[w] = true;
+                    self.order.push(w);
+                }
+            }
+        }
+        for &v in &far {
+            self.level[v] = usize::MAX;
+        }
+    }
+
+    /// Cuthill–McKee from the nodes placed from `order[first]` on: the unplaced neighbours of
+    /// each, in order of increasing degree.
+    fn cuthill_mckee(&mut self, first: usize) {
         let mut head = first;
         let mut nbrs = Vec::new();
-        while head < order.len() {
-            let v = order[head];
+        while head < self.order.len() {
+            let v = self.order[head];
             head += 1;
             nbrs.clear();
-            nbrs.extend(adj(v).filter(|&w| !placed[w]));
-            nbrs.sort_unstable_by_key(|&w| (degree[w], w));
+            nbrs.extend(self.adj(v).filter(|&w| !self.placed[w]));
+            nbrs.sort_unstable_by_key(|&w| (self.degree[w], w));
             for &w in &nbrs {
-                placed[w] = true;
-                order.push(w);
+                self.placed[w] = true;
+                self.order.push(w);
             }
         }
     }
-    order.reverse();
-    order
 }
 
 /// Reverse Cuthill–McKee on the *compressed* pattern: unknowns with identical adjacency
