@@ -298,7 +298,33 @@ pub fn read_gmsh(file: &str, bytes: &[u8]) -> Result<GmshMesh, GmshError> {
     if sorted.quads.is_empty() {
         return Err(GmshError::NoQuads { file: file.into() });
     }
-    // nodes used by quadrilaterals, in tag order
+    let (nodes, index) = used_nodes(file, &sorted, &coords)?;
+    let (quads, reoriented) = checked_quads(file, &sorted, &index, &nodes)?;
+    let groups = Groups {
+        file,
+        names: &names,
+        groups: &groups,
+        index: &index,
+    };
+    let (mut node_sets, faces, interior_curves) = groups.sets_and_faces(&sorted, &boundary_edges(&quads))?;
+    node_sets.insert("all".into(), (0..nodes.len()).collect());
+    Ok(GmshMesh {
+        nodes,
+        quads,
+        node_sets,
+        faces,
+        reoriented,
+        interior_curves,
+    })
+}
+
+/// The nodes the quadrilaterals use, in tag order, checked to lie in the plane z = 0, with
+/// the index of each tag.
+fn used_nodes(
+    file: &str,
+    sorted: &Sorted,
+    coords: &HashMap<u64, [f64; 3]>,
+) -> Result<(Vec<[f64; 2]>, HashMap<u64, usize>), GmshError> {
     let mut used: Vec<u64> = sorted.quads.iter().flat_map(|q| q.1).collect();
     used.sort_unstable();
     used.dedup();
@@ -323,6 +349,17 @@ pub fn read_gmsh(file: &str, bytes: &[u8]) -> Result<GmshMesh, GmshError> {
         index.insert(tag, nodes.len());
         nodes.push([x, y]);
     }
+    Ok((nodes, index))
+}
+
+/// The quadrilaterals as node indices, turned counter-clockwise where they were not (how many
+/// were), refused when degenerate or not convex.
+fn checked_quads(
+    file: &str,
+    sorted: &Sorted,
+    index: &HashMap<u64, usize>,
+    nodes: &[[f64; 2]],
+) -> Result<(Vec<[usize; 4]>, usize), GmshError> {
     let mut quads = Vec::with_capacity(sorted.quads.len());
     let mut reoriented = 0;
     for (tag, q, _) in &sorted.quads {
@@ -353,79 +390,12 @@ pub fn read_gmsh(file: &str, bytes: &[u8]) -> Result<GmshMesh, GmshError> {
         }
         quads.push(n);
     }
-    // boundary edges, oriented counter-clockwise around the body (body on the left)
-    let mut edges: HashMap<(usize, usize), (usize, [usize; 2])> = HashMap::new();
-    for q in &quads {
-        for i in 0..4 {
-            let (a, b) = (q[i], q[(i + 1) % 4]);
-            edges.entry((a.min(b), a.max(b))).or_insert((0, [a, b])).0 += 1;
-        }
-    }
-    let group_name = |dim: i32, tag: i32| names.get(&(dim, tag)).cloned().unwrap_or_else(|| tag.to_string());
-    let mut node_sets: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-    let mut faces = BTreeMap::new();
-    let mut interior_curves = Vec::new();
-    let mut curve_lines: BTreeMap<String, Vec<[u64; 2]>> = BTreeMap::new();
-    let mut add_nodes = |name: &str, tags: &mut dyn Iterator<Item = u64>| -> Result<(), GmshError> {
-        let set = node_sets.entry(name.to_string()).or_default();
-        for t in tags {
-            let i = *index.get(&t).ok_or_else(|| GmshError::NodeOffBody {
-                file: file.into(),
-                group: name.into(),
-                node: t,
-            })?;
-            set.push(i);
-        }
-        Ok(())
-    };
-    let tags_of = |dim: i32, entity: i32| groups.get(&(dim, entity)).cloned().unwrap_or_default();
-    for (&entity, pts) in &sorted.points {
-        for g in tags_of(0, entity) {
-            add_nodes(&group_name(0, g), &mut pts.iter().copied())?;
-        }
-    }
-    for (&entity, lines) in &sorted.lines {
-        for g in tags_of(1, entity) {
-            let name = group_name(1, g);
-            add_nodes(&name, &mut lines.iter().flatten().copied())?;
-            curve_lines.entry(name).or_default().extend(lines);
-        }
-    }
-    for (_, q, entity) in &sorted.quads {
-        for g in tags_of(2, *entity) {
-            add_nodes(&group_name(2, g), &mut q.iter().copied())?;
-        }
-    }
-    for (name, lines) in curve_lines {
-        let mut segments = Vec::with_capacity(lines.len());
-        let mut inside = 0;
-        for [a, b] in lines {
-            let (a, b) = (index[&a], index[&b]);
-            match edges.get(&(a.min(b), a.max(b))) {
-                Some(&(1, seg)) => segments.push(seg),
-                _ => inside += 1,
-            }
-        }
-        if inside > 0 {
-            interior_curves.push((name, inside));
-        } else {
-            faces.insert(name, chain(segments));
-        }
-    }
-    for set in node_sets.values_mut() {
-        set.sort_unstable();
-        set.dedup();
-    }
-    node_sets.insert("all".into(), (0..nodes.len()).collect());
-    Ok(GmshMesh {
-        nodes,
-        quads,
-        node_sets,
-        faces,
-        reoriented,
-        interior_curves,
-    })
+    Ok((quads, reoriented))
 }
+
+#[path = "gmsh_groups.rs"]
+mod groups;
+use groups::{boundary_edges, Groups};
 
 /// Order oriented segments into chains (each segment followed by the one starting at its
 /// end); open chains first from their free start, closed loops after.
