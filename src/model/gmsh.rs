@@ -318,13 +318,16 @@ pub fn read_gmsh(file: &str, bytes: &[u8]) -> Result<GmshMesh, GmshError> {
     })
 }
 
+/// The node index of each node tag a quadrilateral uses.
+pub(super) type NodeIndex = HashMap<u64, usize>;
+
 /// The nodes the quadrilaterals use, in tag order, checked to lie in the plane z = 0, with
 /// the index of each tag.
 fn used_nodes(
     file: &str,
     sorted: &Sorted,
     coords: &HashMap<u64, [f64; 3]>,
-) -> Result<(Vec<[f64; 2]>, HashMap<u64, usize>), GmshError> {
+) -> Result<(Vec<[f64; 2]>, NodeIndex), GmshError> {
     let mut used: Vec<u64> = sorted.quads.iter().flat_map(|q| q.1).collect();
     used.sort_unstable();
     used.dedup();
