@@ -101,51 +101,7 @@ impl Recording {
 
     /// Parse a recording held in memory; `name` is used in error messages.
     pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, RecordingError> {
-        let corrupt = |source| RecordingError::Corrupt {
-            path: name.to_string(),
-            source,
-        };
-        let not_ours = |detail: String| RecordingError::NotContrail {
-            path: name.to_string(),
-            detail,
-        };
-        let mut st = State::default();
-        let mut b = Builder::default();
-        let mut reader = mcap::sans_io::LinearReader::new_with_options(
-            mcap::sans_io::LinearReaderOptions::default()
-                // chunks are opened here, with bounded work (see `chunks`)
-                .with_emit_chunks(true)
-                .with_validate_data_section_crc(true)
-                .with_validate_summary_section_crc(true)
-                .with_check_finishes_after_end_magic(true)
-                .with_record_length_limit(length_limit(bytes.len())),
-        );
-        let mut rest = bytes;
-        let mut chunks = 0usize;
-        while let Some(event) = reader.next_event() {
-            let (opcode, data) = match event.map_err(corrupt)? {
-                mcap::sans_io::LinearReadEvent::ReadRequest(need) => {
-                    let n = need.min(rest.len());
-                    reader.insert(n).copy_from_slice(&rest[..n]);
-                    reader.notify_read(n);
-                    rest = &rest[n..];
-                    continue;
-                }
-                mcap::sans_io::LinearReadEvent::Record { opcode, data } => (opcode, data),
-            };
-            let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
-            if let Record::Chunk { header, data } = record {
-                chunks += 1;
-                let content = expand(&header, &data, length_limit(bytes.len()) as u64).map_err(corrupt)?;
-                for inner in split(&content) {
-                    let (opcode, data) = inner.map_err(corrupt)?;
-                    let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
-                    st.record(record, &mut b, name)?;
-                }
-            } else {
-                st.record(record, &mut b, name)?;
-            }
-        }
+        let (st, mut b, chunks) = read_all_records(bytes, name)?;
         let State {
             profile,
             library,
@@ -153,30 +109,7 @@ impl Recording {
             scene_file,
             ..
         } = st;
-        match profile.as_deref() {
-            Some(schemas::PROFILE) => {}
-            Some(p) => {
-                return Err(not_ours(format!(
-                    "MCAP profile `{p}`{}, expected `{}`",
-                    if library.is_empty() {
-                        String::new()
-                    } else {
-                        format!(" written by `{library}`")
-                    },
-                    schemas::PROFILE
-                )))
-            }
-            None => return Err(not_ours("no MCAP header".into())),
-        }
-        let metadata = metadata.ok_or_else(|| not_ours(format!("no `{}` metadata", schemas::METADATA_NAME)))?;
-        let version = metadata.get("format_version").cloned().unwrap_or_default();
-        if !schemas::READABLE_VERSIONS.contains(&version.as_str()) {
-            return Err(RecordingError::Version {
-                path: name.to_string(),
-                found: version,
-                expected: schemas::READABLE_VERSIONS.join(", "),
-            });
-        }
+        let metadata = check_header(profile.as_deref(), &library, metadata, name)?;
         let model = b.model.take().ok_or_else(|| RecordingError::Incomplete {
             path: name.to_string(),
             what: format!("no message on {}", schemas::MODEL),
@@ -224,6 +157,92 @@ impl Recording {
     pub fn contact_at(&self, increment: usize) -> &[ContactPointRecord] {
         self.contact.get(&increment).map_or(&[], Vec::as_slice)
     }
+}
+
+/// Every record of the file, chunks opened with bounded work (see `chunks`), CRCs checked:
+/// the state of the header and metadata, the messages sorted by channel, and the number of
+/// chunks.
+fn read_all_records(bytes: &[u8], name: &str) -> Result<(State, Builder, usize), RecordingError> {
+    let corrupt = |source| RecordingError::Corrupt {
+        path: name.to_string(),
+        source,
+    };
+    let mut st = State::default();
+    let mut b = Builder::default();
+    let mut reader = mcap::sans_io::LinearReader::new_with_options(
+        mcap::sans_io::LinearReaderOptions::default()
+            .with_emit_chunks(true)
+            .with_validate_data_section_crc(true)
+            .with_validate_summary_section_crc(true)
+            .with_check_finishes_after_end_magic(true)
+            .with_record_length_limit(length_limit(bytes.len())),
+    );
+    let mut rest = bytes;
+    let mut chunks = 0usize;
+    while let Some(event) = reader.next_event() {
+        let (opcode, data) = match event.map_err(corrupt)? {
+            mcap::sans_io::LinearReadEvent::ReadRequest(need) => {
+                let n = need.min(rest.len());
+                reader.insert(n).copy_from_slice(&rest[..n]);
+                reader.notify_read(n);
+                rest = &rest[n..];
+                continue;
+            }
+            mcap::sans_io::LinearReadEvent::Record { opcode, data } => (opcode, data),
+        };
+        let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
+        if let Record::Chunk { header, data } = record {
+            chunks += 1;
+            let content = expand(&header, &data, length_limit(bytes.len()) as u64).map_err(corrupt)?;
+            for inner in split(&content) {
+                let (opcode, data) = inner.map_err(corrupt)?;
+                let record = mcap::parse_record(opcode, data).map_err(corrupt)?;
+                st.record(record, &mut b, name)?;
+            }
+        } else {
+            st.record(record, &mut b, name)?;
+        }
+    }
+    Ok((st, b, chunks))
+}
+
+/// A contrail recording of a readable format: its profile, its metadata (returned) and the
+/// metadata's format version.
+fn check_header(
+    profile: Option<&str>,
+    library: &str,
+    metadata: Option<BTreeMap<String, String>>,
+    name: &str,
+) -> Result<BTreeMap<String, String>, RecordingError> {
+    let not_ours = |detail: String| RecordingError::NotContrail {
+        path: name.to_string(),
+        detail,
+    };
+    match profile {
+        Some(schemas::PROFILE) => {}
+        Some(p) => {
+            let by = if library.is_empty() {
+                String::new()
+            } else {
+                format!(" written by `{library}`")
+            };
+            return Err(not_ours(format!(
+                "MCAP profile `{p}`{by}, expected `{}`",
+                schemas::PROFILE
+            )));
+        }
+        None => return Err(not_ours("no MCAP header".into())),
+    }
+    let metadata = metadata.ok_or_else(|| not_ours(format!("no `{}` metadata", schemas::METADATA_NAME)))?;
+    let version = metadata.get("format_version").cloned().unwrap_or_default();
+    if !schemas::READABLE_VERSIONS.contains(&version.as_str()) {
+        return Err(RecordingError::Version {
+            path: name.to_string(),
+            found: version,
+            expected: schemas::READABLE_VERSIONS.join(", "),
+        });
+    }
+    Ok(metadata)
 }
 
 /// Put back the `/contact` records a version-2 or -3 recording leaves out (see
