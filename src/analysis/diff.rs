@@ -302,7 +302,8 @@ pub fn check_comparable(a: &Recording, b: &Recording) -> Result<(), DiffError> {
     Ok(())
 }
 
-/// Compare two recordings.
+/// Compare two recordings: the fields of every aligned pair of increments and of their
+/// contact points, then the crossings, then how each run ended.
 pub fn diff(a: &Recording, b: &Recording, how: Align, tol: f64) -> Result<DiffReport, DiffError> {
     check_comparable(a, b)?;
     let pairs = align(a, b, how);
@@ -313,82 +314,9 @@ pub fn diff(a: &Recording, b: &Recording, how: Align, tol: f64) -> Result<DiffRe
         .map(|f| FieldDiff::new(f))
         .collect();
     for &(i, j) in &pairs {
-        let (ra, rb) = (&a.increments[i], &b.increments[j]);
-        let at = |point: Option<String>| Divergence {
-            increment_a: ra.increment,
-            increment_b: rb.increment,
-            t: ra.t,
-            point,
-            a: String::new(),
-            b: String::new(),
-        };
-        for fd in fields.iter_mut() {
-            if INCREMENT_FIELDS.contains(&fd.field.as_str()) {
-                let (va, vb) = (inc_values(&fd.field, ra), inc_values(&fd.field, rb));
-                if va.len() != vb.len() {
-                    fd.compare(
-                        &V::Exact(format!("{} values", va.len())),
-                        &V::Exact(format!("{} values", vb.len())),
-                        tol,
-                        || at(None),
-                    );
-                }
-                for (x, y) in va.iter().zip(&vb) {
-                    fd.compare(x, y, tol, || at(None));
-                }
-            }
-        }
-        let (ca, cb) = (a.contact_at(ra.increment), b.contact_at(rb.increment));
-        for pa in ca {
-            let Some(pb) = cb.iter().find(|p| p.pair == pa.pair && p.slave == pa.slave) else {
-                continue;
-            };
-            let label = || Some(format!("{}/{} ({})", pa.pair_name, pa.slave, pa.slave_label));
-            for fd in fields.iter_mut().filter(|f| POINT_FIELDS.contains(&f.field.as_str())) {
-                fd.compare(&point_value(&fd.field, pa), &point_value(&fd.field, pb), tol, || {
-                    at(label())
-                });
-            }
-        }
+        compare_increments(a, b, (i, j), tol, &mut fields);
     }
-    let key = |c: &CrossingMessage| CrossingKey {
-        increment: c.increment,
-        pair: c.crossing.pair,
-        slave: c.crossing.slave,
-        from_segment: c.crossing.from_segment,
-        to_segment: c.crossing.to_segment,
-    };
-    let same = |x: &CrossingMessage, y: &CrossingMessage| {
-        let (kx, ky) = (key(x), key(y));
-        (kx.pair, kx.slave, kx.from_segment, kx.to_segment) == (ky.pair, ky.slave, ky.from_segment, ky.to_segment)
-    };
-    // a crossing has a counterpart when the other run crossed alike in the aligned increment
-    let partner_of_a: std::collections::BTreeMap<usize, usize> = pairs
-        .iter()
-        .map(|&(i, j)| (a.increments[i].increment, b.increments[j].increment))
-        .collect();
-    let partner_of_b: std::collections::BTreeMap<usize, usize> = pairs
-        .iter()
-        .map(|&(i, j)| (b.increments[j].increment, a.increments[i].increment))
-        .collect();
-    let unmatched =
-        |x: &Recording, y: &Recording, partner: &std::collections::BTreeMap<usize, usize>| -> Vec<CrossingKey> {
-            x.crossings
-                .iter()
-                .filter(|c| {
-                    partner
-                        .get(&c.increment)
-                        .is_none_or(|&inc| !y.crossings.iter().any(|d| d.increment == inc && same(c, d)))
-                })
-                .map(key)
-                .collect()
-        };
-    let mut only_a = unmatched(a, b, &partner_of_a);
-    let mut only_b = unmatched(b, a, &partner_of_b);
-    only_a.sort();
-    only_a.dedup();
-    only_b.sort();
-    only_b.dedup();
+    let (only_a, only_b) = unmatched_crossings(a, b, &pairs);
     let (ea, eb) = (run_end(a), run_end(b));
     let only_in_a = a.increments.len() - pairs.len();
     let only_in_b = b.increments.len() - pairs.len();
@@ -412,6 +340,88 @@ pub fn diff(a: &Recording, b: &Recording, how: Align, tol: f64) -> Result<DiffRe
         crossings_only_in_b: only_b,
         within_tolerance: within,
     })
+}
+
+/// Compare the increment `i` of `a` with the increment `j` of `b`: the increment's fields, then
+/// the fields of each contact point recorded in both.
+fn compare_increments(a: &Recording, b: &Recording, (i, j): (usize, usize), tol: f64, fields: &mut [FieldDiff]) {
+    let (ra, rb) = (&a.increments[i], &b.increments[j]);
+    let at = |point: Option<String>| Divergence {
+        increment_a: ra.increment,
+        increment_b: rb.increment,
+        t: ra.t,
+        point,
+        a: String::new(),
+        b: String::new(),
+    };
+    for fd in fields.iter_mut() {
+        if INCREMENT_FIELDS.contains(&fd.field.as_str()) {
+            let (va, vb) = (inc_values(&fd.field, ra), inc_values(&fd.field, rb));
+            if va.len() != vb.len() {
+                fd.compare(
+                    &V::Exact(format!("{} values", va.len())),
+                    &V::Exact(format!("{} values", vb.len())),
+                    tol,
+                    || at(None),
+                );
+            }
+            for (x, y) in va.iter().zip(&vb) {
+                fd.compare(x, y, tol, || at(None));
+            }
+        }
+    }
+    let (ca, cb) = (a.contact_at(ra.increment), b.contact_at(rb.increment));
+    for pa in ca {
+        let Some(pb) = cb.iter().find(|p| p.pair == pa.pair && p.slave == pa.slave) else {
+            continue;
+        };
+        let label = || Some(format!("{}/{} ({})", pa.pair_name, pa.slave, pa.slave_label));
+        for fd in fields.iter_mut().filter(|f| POINT_FIELDS.contains(&f.field.as_str())) {
+            fd.compare(&point_value(&fd.field, pa), &point_value(&fd.field, pb), tol, || {
+                at(label())
+            });
+        }
+    }
+}
+
+/// The crossings of each run without a counterpart in the other (the same pair, slave and
+/// segments in the aligned increment), sorted and without repeats.
+fn unmatched_crossings(a: &Recording, b: &Recording, pairs: &[(usize, usize)]) -> (Vec<CrossingKey>, Vec<CrossingKey>) {
+    let key = |c: &CrossingMessage| CrossingKey {
+        increment: c.increment,
+        pair: c.crossing.pair,
+        slave: c.crossing.slave,
+        from_segment: c.crossing.from_segment,
+        to_segment: c.crossing.to_segment,
+    };
+    let same = |x: &CrossingMessage, y: &CrossingMessage| {
+        let (kx, ky) = (key(x), key(y));
+        (kx.pair, kx.slave, kx.from_segment, kx.to_segment) == (ky.pair, ky.slave, ky.from_segment, ky.to_segment)
+    };
+    let partner_of_a: std::collections::BTreeMap<usize, usize> = pairs
+        .iter()
+        .map(|&(i, j)| (a.increments[i].increment, b.increments[j].increment))
+        .collect();
+    let partner_of_b: std::collections::BTreeMap<usize, usize> = pairs
+        .iter()
+        .map(|&(i, j)| (b.increments[j].increment, a.increments[i].increment))
+        .collect();
+    let unmatched = |x: &Recording, y: &Recording, partner: &std::collections::BTreeMap<usize, usize>| {
+        let mut keys: Vec<CrossingKey> = x
+            .crossings
+            .iter()
+            .filter(|c| {
+                partner
+                    .get(&c.increment)
+                    .is_none_or(|&inc| !y.crossings.iter().any(|d| d.increment == inc && same(c, d)))
+            })
+            .map(key)
+            .collect();
+        keys.sort();
+        keys.dedup();
+        keys
+    };
+    (unmatched(a, b, &partner_of_a), unmatched(b, a, &partner_of_b))
 }
 
 /// The traces of `field` in both runs (x: increment or load level), crossings marked; for a

@@ -65,61 +65,14 @@ pub struct InspectReport {
 /// Summarise a recording.
 pub fn inspect(r: &Recording) -> InspectReport {
     let meta = |k: &str| r.metadata.get(k).cloned().unwrap_or_default();
-    let (status, stopped, failed_at) = match &r.outcome {
-        Some(Outcome::Completed { .. }) => ("completed".to_string(), String::new(), None),
-        Some(Outcome::Failed {
-            increment,
-            t,
-            reason,
-            residuals,
-            ..
-        }) => (
-            "failed".into(),
-            format!(
-                "increment {increment} at t = {}: {reason} (last residuals {})",
-                plain(*t),
-                compact_list(residuals, 8)
-            ),
-            Some(*increment),
-        ),
-        Some(Outcome::Interrupted { increment, t }) => (
-            "interrupted".into(),
-            format!(
-                "interrupted during increment {increment} (last converged t = {})",
-                plain(*t)
-            ),
-            Some(*increment),
-        ),
-        None => ("unknown".into(), "the recording has no outcome message".into(), None),
-    };
+    let (status, stopped, failed_at) = how_it_ended(r);
     let first_cutback = r.iterations.iter().find(|i| i.attempt > 0).map(|i| i.increment);
     let first_failure = match (first_cutback, failed_at) {
         (Some(a), Some(b)) if matches!(r.outcome, Some(Outcome::Failed { .. })) => Some(a.min(b)),
         (None, Some(b)) if matches!(r.outcome, Some(Outcome::Failed { .. })) => Some(b),
         (a, _) => a,
     };
-    let mut per_point: Vec<PointCrossings> = Vec::new();
-    for c in &r.crossings {
-        let (pair, slave) = (c.crossing.pair, c.crossing.slave);
-        let idx = match per_point.iter().position(|p| p.pair == pair && p.slave == slave) {
-            Some(i) => i,
-            None => {
-                let info = r.model.contacts.get(pair);
-                per_point.push(PointCrossings {
-                    pair,
-                    pair_name: info.map(|p| p.name.clone()).unwrap_or_default(),
-                    slave,
-                    slave_label: info.and_then(|p| p.slaves.get(slave).cloned()).unwrap_or_default(),
-                    crossings: 0,
-                    increments: Vec::new(),
-                });
-                per_point.len() - 1
-            }
-        };
-        per_point[idx].crossings += 1;
-        per_point[idx].increments.push(c.increment);
-    }
-    per_point.sort_by_key(|p| (p.pair, p.slave));
+    let per_point = crossings_per_point(r);
     let last = r.increments.last();
     InspectReport {
         file: r.path.clone(),
@@ -168,6 +121,65 @@ pub fn inspect(r: &Recording) -> InspectReport {
         positions_every: meta("positions_every"),
         chunks: r.chunks,
     }
+}
+
+/// How the run ended: its status, where and why it stopped (empty when it completed), and
+/// the increment it stopped in.
+fn how_it_ended(r: &Recording) -> (String, String, Option<usize>) {
+    match &r.outcome {
+        Some(Outcome::Completed { .. }) => ("completed".to_string(), String::new(), None),
+        Some(Outcome::Failed {
+            increment,
+            t,
+            reason,
+            residuals,
+            ..
+        }) => (
+            "failed".into(),
+            format!(
+                "increment {increment} at t = {}: {reason} (last residuals {})",
+                plain(*t),
+                compact_list(residuals, 8)
+            ),
+            Some(*increment),
+        ),
+        Some(Outcome::Interrupted { increment, t }) => (
+            "interrupted".into(),
+            format!(
+                "interrupted during increment {increment} (last converged t = {})",
+                plain(*t)
+            ),
+            Some(*increment),
+        ),
+        None => ("unknown".into(), "the recording has no outcome message".into(), None),
+    }
+}
+
+/// The crossings of each contact point that crossed, in pair and slave order.
+fn crossings_per_point(r: &Recording) -> Vec<PointCrossings> {
+    let mut per_point: Vec<PointCrossings> = Vec::new();
+    for c in &r.crossings {
+        let (pair, slave) = (c.crossing.pair, c.crossing.slave);
+        let idx = match per_point.iter().position(|p| p.pair == pair && p.slave == slave) {
+            Some(i) => i,
+            None => {
+                let info = r.model.contacts.get(pair);
+                per_point.push(PointCrossings {
+                    pair,
+                    pair_name: info.map(|p| p.name.clone()).unwrap_or_default(),
+                    slave,
+                    slave_label: info.and_then(|p| p.slaves.get(slave).cloned()).unwrap_or_default(),
+                    crossings: 0,
+                    increments: Vec::new(),
+                });
+                per_point.len() - 1
+            }
+        };
+        per_point[idx].crossings += 1;
+        per_point[idx].increments.push(c.increment);
+    }
+    per_point.sort_by_key(|p| (p.pair, p.slave));
+    per_point
 }
 
 /// The report as a human-readable table.
