@@ -36,16 +36,14 @@ pub struct ConvertReport {
     pub scenes: usize,
 }
 
-/// Write `r` in format 3 to `out`.
-pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) -> Result<(W, ConvertReport), OutError> {
-    let library = format!("contrail {} (converted from {})", crate::VERSION, r.library);
-    let mut out = McapOut::new(
-        out,
-        library,
-        opts.compression,
-        opts.message_indexes,
-        Clock::Fixed(r.start_time),
-    )?;
+/// The metadata (marked as converted, with the scene stride chosen for the run's nominal
+/// increments), the scene file attached and the model: returns the stride of the Foxglove
+/// scenes and the old file's format version.
+fn write_header<W: Write + Seek>(
+    r: &Recording,
+    out: &mut McapOut<W>,
+    opts: &ConvertOptions,
+) -> Result<(usize, String), OutError> {
     let nominal: usize = (r.metadata.get("parameters"))
         .and_then(|p| serde_json::from_str::<serde_json::Value>(p).ok())
         .and_then(|p| p["stepping"]["increments"].as_u64())
@@ -65,6 +63,20 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
     });
     out.register(metadata, attachment.as_slice())?;
     out.put(schemas::MODEL, &r.model)?;
+    Ok((stride, from_version))
+}
+
+/// Write `r` in format 3 to `out`.
+pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) -> Result<(W, ConvertReport), OutError> {
+    let library = format!("contrail {} (converted from {})", crate::VERSION, r.library);
+    let mut out = McapOut::new(
+        out,
+        library,
+        opts.compression,
+        opts.message_indexes,
+        Clock::Fixed(r.start_time),
+    )?;
+    let (stride, from_version) = write_header(r, &mut out, opts)?;
     let mut format = Format3Writer::new(&r.model, r.scene(), true);
     let mut scenes = 0;
     if stride > 0 {

@@ -185,6 +185,14 @@ fn crossings_per_point(r: &Recording) -> Vec<PointCrossings> {
 /// The report as a human-readable table.
 pub fn render(s: &InspectReport) -> String {
     let mut o = String::new();
+    render_rows(s, &mut o);
+    render_crossings(s, &mut o);
+    render_channels(s, &mut o);
+    o
+}
+
+/// The report's key–value rows: the file, the scene and model, how the run went.
+fn render_rows(s: &InspectReport, o: &mut String) {
     let mut row = |k: &str, v: String| {
         let _ = writeln!(o, "{k:<18} {v}");
     };
@@ -255,6 +263,10 @@ pub fn render(s: &InspectReport) -> String {
         row("last log", l.clone());
     }
     row("crossings", s.crossings.to_string());
+}
+
+/// The table of the points that crossed segments: how often, in which increments.
+fn render_crossings(s: &InspectReport, o: &mut String) {
     if !s.crossings_per_point.is_empty() {
         let _ = writeln!(
             o,
@@ -274,6 +286,10 @@ pub fn render(s: &InspectReport) -> String {
             );
         }
     }
+}
+
+/// The table of messages per channel, and how often positions were written.
+fn render_channels(s: &InspectReport, o: &mut String) {
     let _ = writeln!(o, "\n  {:<12} {:>9}", "channel", "messages");
     for (topic, n) in &s.message_counts {
         let _ = writeln!(o, "  {topic:<12} {n:>9}");
@@ -283,5 +299,4 @@ pub fn render(s: &InspectReport) -> String {
         n => format!("every {n} increments"),
     };
     let _ = writeln!(o, "  (positions {every})");
-    o
 }

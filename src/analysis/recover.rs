@@ -172,6 +172,42 @@ pub fn recover<W: Write + Seek>(bytes: &[u8], name: &str, out: W) -> Result<(W, 
     write(s, name, out, rep)
 }
 
+/// Every channel of this build, each with the file's own schema for its topic (a recording of
+/// an older format keeps its layout), or this build's when the file's was lost: the channel
+/// id of each topic.
+fn add_channels<W: Write + Seek>(
+    w: &mut mcap::Writer<W>,
+    s: &Salvage,
+) -> Result<HashMap<&'static str, u16>, mcap::McapError> {
+    let mut ids = HashMap::new();
+    for c in CHANNELS {
+        let schema = match s.topic_schemas.get(c.topic) {
+            Some((name, encoding, data)) => w.add_schema(name, encoding, data),
+            None => w.add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes()),
+        }?;
+        let mut meta = BTreeMap::new();
+        meta.insert("description".to_string(), c.description.to_string());
+        ids.insert(c.topic, w.add_channel(schema, c.topic, "json", &meta)?);
+    }
+    Ok(ids)
+}
+
+/// The outcome appended to a recording that has none: failed during increment `during`,
+/// cut off, with the chunks kept and dropped.
+fn cut_off(during: usize, t: f64, rep: &RecoverReport) -> Outcome {
+    Outcome::Failed {
+        increment: during,
+        t,
+        reason: format!(
+            "{RECOVERED}: the recording was cut off during increment {during} (the run was killed, lost power or filled its disk); {} complete chunks kept, {} damaged chunks dropped",
+            rep.chunks_kept, rep.chunks_dropped
+        ),
+        residuals: Vec::new(),
+        kind: crate::record::FailureKind::Recording,
+        points: Vec::new(),
+    }
+}
+
 fn write<W: Write + Seek>(
     s: Salvage,
     name: &str,
@@ -195,19 +231,7 @@ fn write<W: Write + Seek>(
         .compression(Some(mcap::Compression::Zstd))
         .create(Guarded::new(out, io.clone()))
         .map_err(werr)?;
-    let mut ids = HashMap::new();
-    for c in CHANNELS {
-        // the file's own schema for this topic (a recording of an older format keeps its
-        // layout), or this build's when the file's was lost
-        let schema = match s.topic_schemas.get(c.topic) {
-            Some((name, encoding, data)) => w.add_schema(name, encoding, data),
-            None => w.add_schema(c.schema_name, "jsonschema", c.schema_text().as_bytes()),
-        }
-        .map_err(werr)?;
-        let mut meta = BTreeMap::new();
-        meta.insert("description".to_string(), c.description.to_string());
-        ids.insert(c.topic, w.add_channel(schema, c.topic, "json", &meta).map_err(werr)?);
-    }
+    let ids = add_channels(&mut w, &s).map_err(werr)?;
     for m in &s.metadata {
         w.write_metadata(m).map_err(werr)?;
     }
@@ -243,17 +267,7 @@ fn write<W: Write + Seek>(
     }
     if !outcome_seen {
         let during = rep.last_increment.map_or(1, |i| i.saturating_add(1));
-        let outcome = Outcome::Failed {
-            increment: during,
-            t: last_t,
-            reason: format!(
-                "{RECOVERED}: the recording was cut off during increment {during} (the run was killed, lost power or filled its disk); {} complete chunks kept, {} damaged chunks dropped",
-                rep.chunks_kept, rep.chunks_dropped
-            ),
-            residuals: Vec::new(),
-            kind: crate::record::FailureKind::Recording,
-            points: Vec::new(),
-        };
+        let outcome = cut_off(during, last_t, &rep);
         let data = serde_json::to_vec(&outcome).map_err(|e| werr(mcap::McapError::Io(e.into())))?;
         let channel_id = *ids
             .get(schemas::OUTCOME)
