@@ -1,6 +1,6 @@
 //! Why an increment may have no solution at all: a body that nothing but frictional contact
-//! holds, with every one of its points in contact slipping at the last converged increment,
-//! is at the Coulomb limit. If the load on it grows further (a block pushed up an incline
+//! holds, carrying at the last converged increment (nearly) all the friction its points in
+//! contact can hold, is at the Coulomb limit. If the load on it grows further (a block pushed up an incline
 //! beyond `W (sin α + μ cos α)`, a weight on a slope steeper than `atan μ`), no static
 //! equilibrium exists, and Newton cannot converge at any step: the run must stop there, and
 //! it should say that this is the likely reason rather than only "no convergence".
