@@ -26,7 +26,7 @@ cases=(
   "24×1, same, without predictor and line search|strip-channel ${SEED[*]} --set stepping.predictor=last --set solver.line_search=false"
   "120×4, μ = 0.2, adaptive (default), no recording|strip-channel --set body.strip.mesh.elements=[120,4]"
   "120×4, μ = 0.2, adaptive (default), MCAP|strip-channel --set body.strip.mesh.elements=[120,4] --out REC.mcap"
-  "120×4, no recording, one thread (RAYON_NUM_THREADS=1)|ONE_THREAD strip-channel --set body.strip.mesh.elements=[120,4]"
+  "120×4, no recording, one thread (--threads 1)|strip-channel --set body.strip.mesh.elements=[120,4] --threads 1"
 )
 echo "| case | outcome | wall (best of $REPEAT) | CPU | increments | Newton its | assemblies (with tangent) | µs / iteration | elements | contact | LU | solve | recording |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -34,12 +34,10 @@ for c in "${cases[@]}"; do
   label="${c%%|*}"
   args="${c#*|}"
   args="${args//REC.mcap/$TMP/rec.mcap}"
-  threads="${RAYON_NUM_THREADS:-}"
-  case "$args" in ONE_THREAD*) threads=1; args="${args#ONE_THREAD }" ;; esac
   best=""
   for _ in $(seq "$REPEAT"); do
     rc=0
-    RAYON_NUM_THREADS="$threads" /usr/bin/time -f "%e %U %S" -o "$TMP/time" "$BIN" run $args --quiet >"$TMP/out" 2>&1 || rc=$?
+    /usr/bin/time -f "%e %U %S" -o "$TMP/time" "$BIN" run $args --quiet >"$TMP/out" 2>&1 || rc=$?
     read -r wall user sys < <(tail -n1 "$TMP/time")
     if [ -z "$best" ] || awk "BEGIN{exit !($wall < $best)}"; then
       best="$wall"

@@ -36,7 +36,11 @@ fn main() {
         let n = asm.dofs.n_free;
         let reps = (2_000_000 / model.dof_count()).clamp(3, 200);
         let time = |asm: &mut Assembler, st: &mut TrialState, par: bool| {
-            asm.set_parallel(par);
+            let threads = if par { contrail::threads::available_cores() } else { 1 };
+            asm.set_threads(threads, model.elements.len());
+            if par {
+                asm.pacing.force(contrail::assembly::pacing::Mode::Team);
+            }
             let alphas0 = st.alphas.clone();
             asm.assemble(model, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
                 .unwrap();
@@ -62,7 +66,7 @@ fn main() {
             model.elements.len(),
             ts * 1e3,
             tp * 1e3,
-            rayon::current_num_threads(),
+            contrail::threads::available_cores(),
             ts / tp
         );
 

@@ -22,6 +22,7 @@ pub mod settings;
 pub mod solver;
 pub mod study;
 pub mod sweep;
+pub mod threads;
 
 /// Version of the crate (recorded in every run).
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -103,6 +103,12 @@ pub struct NewtonSettings {
     pub check_tangent: TangentCheckWhen,
     /// Which linear solver factorises the tangent (see [`LinearSolver`]).
     pub linear_solver: LinearSolver,
+    /// Threads this run may use, the solver's own included (0: the cores this process may
+    /// use, see [`crate::threads::available_cores`]). The element kernels use them where
+    /// they are measured to pay, the factorisations above a measured size; the results do
+    /// not depend on it. `contrail run --threads` sets it; `contrail sweep --jobs` and
+    /// `contrail serve --workers` divide the machine among their runs.
+    pub threads: usize,
 }
 
 /// Which linear solver factorises the tangent (`crate::linalg`). They give the same
@@ -153,6 +159,7 @@ impl Default for NewtonSettings {
             freeze_after: 4,
             check_tangent: TangentCheckWhen::OnFailure,
             linear_solver: LinearSolver::Auto,
+            threads: 0,
         }
     }
 }

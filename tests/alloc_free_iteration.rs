@@ -8,8 +8,8 @@
 //! kernels, scatter into the fixed CSC pattern), a residual-only assembly (the line search's
 //! trial) and the sparse LU factorisation with its solve — must make **zero** allocations.
 //! Tolerance: none (a count). Per-increment work (copying the state, the records) is not
-//! part of this claim. The same on the 120×4 mesh (480 elements), whose element kernels run
-//! half on the assembler's helper thread (`assembly/helper.rs`; the allocator counts every
+//! part of this claim. The same on the 120×4 mesh (480 elements), whose element kernels are
+//! shared with a team of two threads (`assembly/team.rs`; the allocator counts every
 //! thread's allocations). And on the frictionless 48×2 strip with the banded LU switched off,
 //! whose symmetric tangent is factorised by faer's sparse `LDLᵀ` (`assembly/ldlt.rs`:
 //! symmetry check, factorisation, solve and backward-error check).
@@ -46,13 +46,23 @@ unsafe impl GlobalAlloc for Counting {
 static GLOBAL: Counting = Counting;
 
 /// Allocations made by 20 steady-state iterations on the strip meshed `mesh` (see above);
-/// also whether its assembler evaluated the elements on more than one thread.
-fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver>) -> (usize, bool, Assembler) {
+/// also whether its assembler evaluated the elements on more than one thread. With
+/// `threads > 1` every assembly shares its element kernels with the team.
+fn allocations_in_steady_state(
+    mesh: &str,
+    mu: &str,
+    solver: Option<LinearSolver>,
+    threads: usize,
+) -> (usize, bool, Assembler) {
     let mesh = format!("body.strip.mesh.elements={mesh}");
     let mu = format!("contact.mu={mu}");
     let problem = common::scene("strip-channel", &[mesh.as_str(), mu.as_str()]);
     let model = &problem.model;
     let mut asm = Assembler::new(model);
+    asm.set_threads(threads, model.elements.len());
+    if threads > 1 {
+        asm.pacing.force(contrail::assembly::pacing::Mode::Team);
+    }
     if let Some(s) = solver {
         asm.linear.set_solver(s);
     }
@@ -100,7 +110,7 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
         asm.solve(&mut r).unwrap();
     }
     let made = ALLOCATIONS.load(Ordering::Relaxed) - before;
-    let parallel = asm.is_parallel();
+    let parallel = asm.timings().team_assemblies > 0;
     (made, parallel, asm)
 }
 
@@ -110,25 +120,18 @@ fn allocations_in_steady_state(mesh: &str, mu: &str, solver: Option<LinearSolver
 #[test]
 fn steady_state_newton_iterations_allocate_nothing() {
     // 96 elements on the calling thread
-    let (made, parallel, _) = allocations_in_steady_state("[48,2]", "0.2", None);
+    let (made, parallel, _) = allocations_in_steady_state("[48,2]", "0.2", None, 1);
     assert!(!parallel, "96 elements are assembled on the calling thread");
     assert_eq!(made, 0, "allocations in 20 steady-state iterations");
 
-    // 480 elements, half on the helper thread (unless this process has a single thread:
-    // RAYON_NUM_THREADS=1, one core)
-    let (made, parallel, helper) = allocations_in_steady_state("[120,4]", "0.2", None);
-    assert!(
-        parallel || rayon::current_num_threads() == 1,
-        "480 elements use the helper"
-    );
-    assert_eq!(
-        made, 0,
-        "allocations in 20 steady-state iterations (helper thread included)"
-    );
-    drop(helper);
+    // 480 elements shared with a team of two
+    let (made, parallel, team) = allocations_in_steady_state("[120,4]", "0.2", None, 2);
+    assert!(parallel, "480 elements are shared with the team");
+    assert_eq!(made, 0, "allocations in 20 steady-state iterations (team included)");
+    drop(team);
 
     // the symmetric factorisation (frictionless: the tangent is symmetric)
-    let (made, _, asm) = allocations_in_steady_state("[48,2]", "0", Some(LinearSolver::General));
+    let (made, _, asm) = allocations_in_steady_state("[48,2]", "0", Some(LinearSolver::General), 1);
     let stats = asm.linear.ldlt_stats();
     assert!(stats.solves >= 20 && stats.fallbacks == 0, "LDLT used: {stats:?}");
     assert_eq!(made, 0, "allocations in 20 steady-state iterations (LDLT)");

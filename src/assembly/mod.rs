@@ -1,7 +1,8 @@
 //! Global assembly: DOF numbering (prescribed DOFs eliminated), element and contact
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
-pub mod helper;
+pub mod pacing;
+pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
@@ -27,6 +28,11 @@ pub struct Timings {
     /// Assemblies that computed the tangent as well.
     pub tangent_assemblies: usize,
     pub factorizations: usize,
+    /// Threads the run could use for its element kernels (the calling one included), and
+    /// the assemblies whose kernels ran on them (the others ran on the calling thread alone,
+    /// which the measurements found faster then: [`pacing`]).
+    pub threads: usize,
+    pub team_assemblies: usize,
 }
 
 const NONE: u32 = u32::MAX;
@@ -119,37 +125,55 @@ pub struct Assembler {
     pub timings: Timings,
     /// Reference geometry of each element (computed once; an invalid one fails assembly).
     geometry: Vec<Result<QuadGeometry, ElementError>>,
-    /// Who evaluates the element kernels besides the calling thread.
-    threads: Threads,
-    /// Per-element outputs of one block of the parallel paths (allocated once).
+    /// The team that shares the element kernels with the calling thread (`None`: one
+    /// thread), and the measured choice of whether it pays ([`pacing`]).
+    team: Option<team::Team>,
+    pub pacing: pacing::Pacing,
+    /// Per-element outputs of one block of the team's path (allocated once).
     block: Vec<ElementOut>,
 }
 
-/// The threads of the element kernels.
-enum Threads {
-    /// The calling thread only.
-    Calling,
-    /// The calling thread and one spinning helper (see [`helper`]), from
-    /// [`HELPER_ELEMENTS_FROM`] elements.
-    Helper(helper::Helper),
-    /// rayon's pool, from [`PARALLEL_ELEMENTS_FROM`] elements.
-    Rayon,
+/// Models with at least this many elements may share their element kernels with a team of
+/// threads (the run's thread budget); whether an assembly does is measured ([`pacing`]).
+/// Below it one assembly takes a few microseconds and waking a thread costs as much.
+pub const TEAM_ELEMENTS_FROM: usize = 64;
+
+/// Elements per block of the team's path (the per-element buffers of one block: 4096 × 584
+/// bytes), whose outputs are scattered sequentially in element order after the kernels:
+/// the sums are the sequential ones, bit for bit.
+const BLOCK: usize = 4096;
+
+/// Elements per piece of work a thread claims (≈ 20 µs of kernels: a worker that the
+/// operating system stops inside a piece delays the assembly by no more than that piece).
+const PIECE: usize = 32;
+
+/// A slice whose disjoint ranges are handed to the team's threads.
+struct SharedMut<T> {
+    ptr: *mut T,
+    len: usize,
 }
 
-/// Models with at least this many elements evaluate their element kernels in parallel
-/// (rayon), in blocks of [`BLOCK`] elements whose results are then scattered sequentially in
-/// element order: the sums are the sequential ones, bit for bit. Below it the threads cost
-/// more than they save (measured on 2 cores: see docs/large-models.md).
-pub const PARALLEL_ELEMENTS_FROM: usize = 2_000;
+// SAFETY: only used through `range`, whose callers hand out disjoint ranges (one piece each).
+unsafe impl<T: Send> Sync for SharedMut<T> {}
 
-/// Models with at least this many elements (and fewer than [`PARALLEL_ELEMENTS_FROM`])
-/// evaluate half their element kernels on a spinning helper thread (see [`helper`]), when
-/// [`helper::allowed`]. Measured on the 120×4 strip-channel (480 elements; 2 cores): see
-/// docs/performance.md's table.
-pub const HELPER_ELEMENTS_FROM: usize = 256;
+impl<T> SharedMut<T> {
+    fn new(s: &mut [T]) -> Self {
+        SharedMut {
+            ptr: s.as_mut_ptr(),
+            len: s.len(),
+        }
+    }
 
-/// Elements per parallel block (the per-element buffers of one block: 4096 × 584 bytes).
-const BLOCK: usize = 4096;
+    /// # Safety
+    /// No two live references to overlapping ranges may exist (each piece index is claimed
+    /// by one thread exactly once, and pieces cover disjoint ranges).
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn range(&self, r: std::ops::Range<usize>) -> &mut [T] {
+        assert!(r.start <= r.end && r.end <= self.len);
+        // SAFETY: in bounds (checked above); exclusive by the caller's contract
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(r.start), r.end - r.start) }
+    }
+}
 
 /// One element's kernel output: residual, tangent, energy, or the failure.
 #[derive(Clone, Copy)]
@@ -214,48 +238,30 @@ impl Assembler {
                     QuadGeometry::for_material(body.kind, &body.material, &el.nodes.map(|n| model.nodes[n]))
                 })
                 .collect(),
-            threads: Threads::Calling,
+            team: None,
+            pacing: pacing::Pacing::default(),
             block: Vec::new(),
         };
-        let n = model.elements.len();
-        if n >= PARALLEL_ELEMENTS_FROM && rayon::current_num_threads() > 1 {
-            a.set_parallel(true);
-        } else if n >= HELPER_ELEMENTS_FROM && helper::allowed() {
-            a.set_helper(true, n);
-        }
         a.build_slots(model);
         a
     }
 
-    /// Evaluate the element kernels in parallel on rayon's pool (`true`) or on the calling
-    /// thread; both give the same bits (the scatter is sequential in element order either way).
-    pub fn set_parallel(&mut self, parallel: bool) {
-        self.threads = if parallel { Threads::Rayon } else { Threads::Calling };
-        self.block = if parallel {
-            vec![ElementOut::default(); BLOCK]
-        } else {
-            Vec::new()
+    /// Share the element kernels among `threads` threads (the calling one included) on
+    /// models of at least [`TEAM_ELEMENTS_FROM`] elements; 1 keeps them on the calling
+    /// thread. Every choice gives the same bits (the scatter is sequential in element order).
+    pub fn set_threads(&mut self, threads: usize, elements: usize) {
+        let team = (threads > 1 && elements >= TEAM_ELEMENTS_FROM).then(|| team::Team::new(threads));
+        self.team = team.filter(|t| t.threads() > 1);
+        self.block = match self.team {
+            Some(_) => vec![ElementOut::default(); elements.min(BLOCK)],
+            None => Vec::new(),
         };
+        self.pacing = pacing::Pacing::default();
     }
 
-    /// Evaluate half of the `n` element kernels on a helper thread (`true`, when one can be
-    /// started) or all on the calling thread; the same bits either way.
-    pub fn set_helper(&mut self, on: bool, n: usize) {
-        self.threads = match on.then(helper::Helper::start).flatten() {
-            Some(h) => {
-                self.block = vec![ElementOut::default(); n];
-                Threads::Helper(h)
-            }
-            None => {
-                self.block = Vec::new();
-                Threads::Calling
-            }
-        };
-    }
-
-    /// Whether the element kernels run on more than the calling thread.
-    pub fn is_parallel(&self) -> bool {
-        !matches!(self.threads, Threads::Calling)
+    /// Threads that may evaluate the element kernels (the calling one included).
+    pub fn threads(&self) -> usize {
+        self.team.as_ref().map_or(1, team::Team::threads)
     }
 
     /// Add one element's residual and tangent into the global arrays.
@@ -294,43 +300,73 @@ impl Assembler {
         Ok(())
     }
 
-    /// Blocks of [`BLOCK`] elements: kernels in parallel into per-element buffers (each
-    /// element owns its buffer and its `alphas` entry), then the sequential scatter in
-    /// element order, so residual, tangent and energy are summed exactly as in
-    /// [`Self::elements_sequential`]. The first failing element (in element order) is
-    /// reported, as sequentially; the `alphas` of the later elements of its block have been
-    /// updated as well (a failed assembly leaves the trial state dirty either way).
-    fn elements_parallel(
+    /// Blocks of [`BLOCK`] elements: kernels on the team into per-element buffers (each
+    /// element owns its buffer and its `alphas` entry; threads claim pieces of [`PIECE`]
+    /// elements), then the sequential scatter in element order, so residual, tangent and
+    /// energy are summed exactly as in [`Self::elements_sequential`]. The first failing
+    /// element (in element order) is reported, as sequentially; the `alphas` of the later
+    /// elements of its block have been updated as well (a failed assembly leaves the trial
+    /// state dirty either way).
+    fn elements_team(
         &mut self,
         model: &Model,
         u: &[f64],
         alphas: &mut [[f64; 4]],
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
-        use rayon::prelude::*;
+        let Some(team) = self.team.take() else {
+            return self.elements_sequential(model, u, alphas, with_tangent);
+        };
         let mut block = std::mem::take(&mut self.block);
         let n = model.elements.len();
         let mut result = Ok(());
         for first in (0..n).step_by(BLOCK) {
             let last = (first + BLOCK).min(n);
-            let elements = &model.elements[first..last];
-            let geometry = &self.geometry[first..last];
-            let out = &mut block[..last - first];
-            out.par_iter_mut()
-                .zip(alphas[first..last].par_iter_mut())
-                .zip(elements.par_iter().zip(geometry.par_iter()))
-                .with_min_len(64)
-                .for_each(|((o, alpha), (el, geo))| {
-                    let k = with_tangent.then_some(&mut o.ke);
-                    o.energy = element_kernel(model, el, geo, u, alpha, &mut o.re, k);
-                });
-            result = self.scatter_outputs(model, first, out, with_tangent);
+            let out = SharedMut::new(&mut block[..last - first]);
+            let al = SharedMut::new(&mut alphas[first..last]);
+            let geometry = &self.geometry;
+            team.run((last - first).div_ceil(PIECE), &|k| {
+                let range = k * PIECE..((k + 1) * PIECE).min(last - first);
+                // SAFETY: piece k is claimed once and the pieces' ranges are disjoint
+                let (out, al) = unsafe { (out.range(range.clone()), al.range(range.clone())) };
+                for (j, (o, alpha)) in out.iter_mut().zip(al.iter_mut()).enumerate() {
+                    let ie = first + range.start + j;
+                    let kk = with_tangent.then_some(&mut o.ke);
+                    o.energy = element_kernel(model, &model.elements[ie], &geometry[ie], u, alpha, &mut o.re, kk);
+                }
+            });
+            result = self.scatter_outputs(model, first, &block[..last - first], with_tangent);
             if result.is_err() {
                 break;
             }
         }
         self.block = block;
+        self.team = Some(team);
         result
+    }
+
+    /// The element kernels on the calling thread or the team, whichever the measurements
+    /// say is faster now ([`pacing`]).
+    fn elements(
+        &mut self,
+        model: &Model,
+        u: &[f64],
+        alphas: &mut [[f64; 4]],
+        with_tangent: bool,
+    ) -> Result<(), AssemblyError> {
+        let mode = match self.team {
+            Some(_) => self.pacing.choose(with_tangent),
+            None => pacing::Mode::Alone,
+        };
+        let started = Instant::now();
+        match mode {
+            pacing::Mode::Alone => self.elements_sequential(model, u, alphas, with_tangent)?,
+            pacing::Mode::Team => self.elements_team(model, u, alphas, with_tangent)?,
+        }
+        if self.team.is_some() {
+            self.pacing.record(with_tangent, mode, started.elapsed());
+        }
+        Ok(())
     }
 
     /// Sum the kernel outputs `out` of the elements from `first` on, in element order (the
@@ -349,46 +385,6 @@ impl Assembler {
             self.scatter_element(ie, &model.elements[ie].nodes, &o.re, with_tangent.then_some(&o.ke));
         }
         Ok(())
-    }
-
-    /// The kernels of the first half of the elements on the helper thread, of the second
-    /// half on the calling one, into per-element buffers; then the sequential scatter in
-    /// element order (as [`Self::elements_parallel`]: the sequential bits).
-    fn elements_helper(
-        &mut self,
-        model: &Model,
-        u: &[f64],
-        alphas: &mut [[f64; 4]],
-        with_tangent: bool,
-    ) -> Result<(), AssemblyError> {
-        let Threads::Helper(helper) = &self.threads else {
-            return self.elements_sequential(model, u, alphas, with_tangent);
-        };
-        let n = model.elements.len();
-        let mid = n / 2;
-        let (out_a, out_b) = self.block[..n].split_at_mut(mid);
-        let (al_a, al_b) = alphas.split_at_mut(mid);
-        let geometry = &self.geometry;
-        let kernels = |first: usize, out: &mut [ElementOut], al: &mut [[f64; 4]]| {
-            for (k, (o, alpha)) in out.iter_mut().zip(al.iter_mut()).enumerate() {
-                let ie = first + k;
-                let kk = with_tangent.then_some(&mut o.ke);
-                o.energy = element_kernel(model, &model.elements[ie], &geometry[ie], u, alpha, &mut o.re, kk);
-            }
-        };
-        let first_half = std::sync::Mutex::new((out_a, al_a));
-        helper.join(
-            &|| {
-                let mut g = first_half.lock().unwrap_or_else(|e| e.into_inner());
-                let (out, al) = &mut *g;
-                kernels(0, out, al);
-            },
-            || kernels(mid, out_b, al_b),
-        );
-        let block = std::mem::take(&mut self.block);
-        let result = self.scatter_outputs(model, 0, &block[..n], with_tangent);
-        self.block = block;
-        result
     }
 
     fn build_slots(&mut self, model: &Model) {
@@ -429,11 +425,7 @@ impl Assembler {
             self.r_abs.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
-            match self.threads {
-                Threads::Calling => self.elements_sequential(model, u, alphas, with_tangent)?,
-                Threads::Helper(_) => self.elements_helper(model, u, alphas, with_tangent)?,
-                Threads::Rayon => self.elements_parallel(model, u, alphas, with_tangent)?,
-            }
+            self.elements(model, u, alphas, with_tangent)?;
             self.missing.clear();
             let elements_done = Instant::now();
             self.timings.elements += elements_done - started;
@@ -527,6 +519,8 @@ impl Assembler {
             factorization: self.linear.times.factor_time,
             solve: self.linear.times.solve_time,
             factorizations: self.linear.times.factorizations,
+            threads: self.threads(),
+            team_assemblies: self.pacing.team,
             ..self.timings
         }
     }
@@ -603,12 +597,13 @@ mod tests {
     use crate::solver::state::TrialState;
 
     /// Assemble (with or without the tangent) from the same state, sequentially or not.
-    fn assembled(model: &Model, threads: u8, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
+    fn assembled(model: &Model, threads: usize, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
         let mut asm = Assembler::new(model);
-        match threads {
-            0 => asm.set_parallel(false),
-            1 => asm.set_parallel(true),
-            _ => asm.set_helper(true, model.elements.len()),
+        asm.set_threads(threads, model.elements.len());
+        // every assembly on the team when there is one (the pacing measures nothing here)
+        if threads > 1 {
+            assert_eq!(asm.threads(), threads);
+            asm.pacing.force(pacing::Mode::Team);
         }
         let mut st = TrialState::new(model);
         for (i, u) in st.u.iter_mut().enumerate() {
@@ -630,10 +625,9 @@ mod tests {
         let sets = vec!["body.block.mesh.elements=[100, 50]".to_string()];
         let model = crate::load_scene("hertz", &sets).unwrap().1.model;
         assert!(model.elements.len() > BLOCK);
-        assert!(Assembler::new(&model).is_parallel() || rayon::current_num_threads() == 1);
         for with_tangent in [true, false] {
-            let (rs, ks, es, als) = assembled(&model, 0, with_tangent);
-            for threads in [1, 2] {
+            let (rs, ks, es, als) = assembled(&model, 1, with_tangent);
+            for threads in [2, 3] {
                 let (rp, kp, ep, alp) = assembled(&model, threads, with_tangent);
                 assert_eq!(bits(&rs), bits(&rp), "residual ({threads})");
                 assert_eq!(bits(&ks), bits(&kp), "tangent ({threads})");
@@ -648,6 +642,8 @@ mod tests {
     fn small_models_assemble_on_the_calling_thread() {
         let model = crate::load_scene("cantilever", &[]).unwrap().1.model;
         assert_eq!(model.elements.len(), 24);
-        assert!(!Assembler::new(&model).is_parallel());
+        let mut asm = Assembler::new(&model);
+        asm.set_threads(2, model.elements.len());
+        assert_eq!(asm.threads(), 1);
     }
 }

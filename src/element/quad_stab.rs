@@ -180,14 +180,16 @@ pub(super) fn compression_blend(
 ) -> Result<f64, ElementError> {
     use nalgebra::{Const, U1};
     use num_dual::Dual2SVec64;
+    let mut k = k;
+    let ee = quad_residual_tangent_with(ElementKind::Q4Eas, material, geo, u, alpha, r, k.as_deref_mut())?;
+    // most elements are not compressed to λ₀: β = 0 there, and its derivatives (second-order
+    // dual numbers in 8 unknowns, the costliest part of the element) are not needed
+    if compression_share(geo, u) == 0.0 {
+        return Ok(ee);
+    }
     let ud: [[Dual2SVec64<8>; 2]; 4] =
         std::array::from_fn(|i| std::array::from_fn(|c| Dual2SVec64::<8>::from_re(u[i][c]).derivative(2 * i + c)));
     let beta = compression_share(geo, &ud);
-    let mut k = k;
-    let ee = quad_residual_tangent_with(ElementKind::Q4Eas, material, geo, u, alpha, r, k.as_deref_mut())?;
-    if beta.re == 0.0 {
-        return Ok(ee);
-    }
     let (mut rq, mut kq, mut a0) = ([0.0; 8], [0.0; 64], [0.0; 4]);
     let want_k = k.is_some();
     let eq = quad_residual_tangent_with(

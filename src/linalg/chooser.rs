@@ -13,7 +13,7 @@
 //! pivot, a large backward error) retires the plan for the rest of its pattern and the LU
 //! solves; a failed iterative solve is repeated by the LU (the next solve tries the
 //! iterative solver again). faer's factorisations run sequentially below
-//! [`PARALLEL_FROM`] unknowns and with faer's global parallelism above.
+//! [`PARALLEL_FROM`] unknowns (measured: every size) and on the run's threads above.
 
 use super::aggregation::MeshNode;
 use super::band_plan::BandPlan;
@@ -26,8 +26,14 @@ pub use crate::settings::LinearSolver;
 use faer::Par;
 use std::time::{Duration, Instant};
 
-/// Systems with at least this many unknowns are factorised with faer's global parallelism.
-pub const PARALLEL_FROM: usize = 20_000;
+/// Systems with at least this many unknowns would be factorised on the run's threads
+/// (faer's rayon parallelism); smaller ones sequentially. No size was found where that
+/// pays: faer's parallel `LDLᵀ` took 1.3–2.4× the sequential time at 4e4, 1e5 and 4e5
+/// unknowns with 2, 4, 8 and 16 threads (16-core machine, 2026-11-26; also with 2 threads
+/// on the 2-core one; `cargo run --release --example factor_grain -- 400x50 1000x50
+/// 2000x100`), so factorisations are sequential at every size. A run's threads go to its
+/// element kernels.
+pub const PARALLEL_FROM: usize = usize::MAX;
 
 /// Numeric factorisations made, and the time spent in them (symbolic analyses and the
 /// multigrid set-up included) and in the substitutions.
@@ -58,6 +64,9 @@ pub struct LinearSolve {
     /// Symbolic analyses made (one per plan).
     pub symbolic_factorizations: usize,
     pub times: SolveTimes,
+    /// Threads the factorisations may use (the run's budget), and the size from which they do.
+    threads: usize,
+    parallel_from: usize,
 }
 
 impl Default for LinearSolve {
@@ -81,6 +90,24 @@ impl LinearSolve {
             iterative_stats: IterativeStats::default(),
             symbolic_factorizations: 0,
             times: SolveTimes::default(),
+            threads: 1,
+            parallel_from: PARALLEL_FROM,
+        }
+    }
+
+    /// Let factorisations of systems with at least `from` unknowns use `threads` threads
+    /// (the run's budget; [`PARALLEL_FROM`] is the measured default for `from`).
+    pub fn set_threads(&mut self, threads: usize, from: usize) {
+        self.threads = threads.max(1);
+        self.parallel_from = from;
+    }
+
+    /// The parallelism of faer's factorisations of an `n`-unknown system.
+    fn parallelism(&self, n: usize) -> Par {
+        if self.threads < 2 || n < self.parallel_from {
+            Par::Seq
+        } else {
+            Par::rayon(self.threads)
         }
     }
 
@@ -137,7 +164,7 @@ impl LinearSolve {
         if self.generation != Some(a.generation()) {
             self.plan(a);
         }
-        let par = parallelism(a.n);
+        let par = self.parallelism(a.n);
         if let Some(plan) = self.iterative.as_mut() {
             let started = Instant::now();
             if Factorization::solve(plan, a, b, par).is_ok() {
@@ -256,15 +283,6 @@ fn factorize_and_solve(
     let solved = plan.solve(a, b, par);
     times.solve_time += done.elapsed();
     solved
-}
-
-/// The parallelism of faer's factorisations: sequential below [`PARALLEL_FROM`].
-fn parallelism(n: usize) -> Par {
-    if n < PARALLEL_FROM {
-        Par::Seq
-    } else {
-        faer::get_global_parallelism()
-    }
 }
 
 /// The unknowns of each cell of an `nx × ny` grid of 4-node cells, nodes numbered row by row

@@ -168,6 +168,9 @@ impl<'a> Stepping<'a> {
         let nominal = st.end / st.increments.max(1) as f64;
         let mut asm = Assembler::new(model);
         asm.linear.set_solver(settings.newton.linear_solver);
+        let threads = crate::threads::resolve(settings.newton.threads);
+        asm.set_threads(threads, model.elements.len());
+        asm.linear.set_threads(threads, crate::linalg::chooser::PARALLEL_FROM);
         let mut committed = TrialState::new(model);
         let start = Config {
             model,

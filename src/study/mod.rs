@@ -38,6 +38,9 @@ pub struct RunOptions {
     pub mcap: Option<PathBuf>,
     /// Positions every N-th increment in the recording (0 or 1: every one).
     pub positions_every: usize,
+    /// Threads of the run where its scene leaves `solver.threads` at 0 (0: all the cores
+    /// this process may use); a sweep running runs side by side gives each its share.
+    pub threads: usize,
 }
 
 /// How a run ended.
@@ -152,7 +155,7 @@ impl Study {
         observers: &mut [&mut dyn Observer],
         stop: &AtomicBool,
     ) -> Result<StudyOutcome, StudyError> {
-        let (src, problem) = match crate::load_scene(&self.scene, &self.sets) {
+        let (src, mut problem) = match crate::load_scene(&self.scene, &self.sets) {
             Ok(x) => x,
             Err(e) => {
                 return Ok(StudyOutcome {
@@ -167,6 +170,9 @@ impl Study {
                 })
             }
         };
+        if problem.settings.newton.threads == 0 {
+            problem.settings.newton.threads = opts.threads;
+        }
         let info = crate::run_info(&src, &self.sets, &problem);
         let mut mcap = match &opts.mcap {
             Some(p) => Some(create(p, opts.positions_every)?),

@@ -106,7 +106,7 @@ fn finished_runs(out: &Path, selected: &[&PlannedRun]) -> BTreeMap<String, RunRe
 /// Worker threads: `jobs`, or one per core when 0, never more than the runs to make.
 fn worker_count(jobs: usize, pending: usize) -> usize {
     let jobs = if jobs == 0 {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
+        crate::threads::available_cores()
     } else {
         jobs
     };
@@ -133,6 +133,7 @@ fn progress_line(k: usize, total: usize, run: &PlannedRun, outcome: &crate::stud
 /// it recorded into `opts.out/runs/ID.mcap`, and sends its result.
 fn worker<'a>(
     pending: &[&'a PlannedRun],
+    threads: usize,
     next: &AtomicUsize,
     opts: &SweepOptions,
     stop: &AtomicBool,
@@ -147,6 +148,7 @@ fn worker<'a>(
         let ro = RunOptions {
             mcap: Some(opts.out.join("runs").join(format!("{}.mcap", run.id))),
             positions_every: opts.positions_every,
+            threads,
         };
         let result = Study::new(run.scene.clone(), run.sets.clone()).run(&ro, &mut [], stop);
         if tx.send((*run, result)).is_err() {
@@ -184,10 +186,14 @@ pub fn run_sweep(
     };
     let (mut csv, mut json, mut rows) = write(&done)?;
     let jobs = worker_count(opts.jobs, pending.len());
-    // one solve per core: no spinning helper threads besides them
-    if jobs > 1 {
-        crate::assembly::helper::set_allowed(false);
-    }
+    // the runs side by side share the machine: each gets its part of the cores
+    let threads = crate::threads::share(crate::threads::available_cores(), jobs);
+    progress(&format!(
+        "{} runs, {jobs} side by side on {} cores: {threads} thread{} each (a scene's `solver.threads` overrides)",
+        pending.len(),
+        crate::threads::available_cores(),
+        if threads == 1 { "" } else { "s" }
+    ));
     let next = AtomicUsize::new(0);
     let (tx, rx) = mpsc::channel();
     let mut ran = 0;
@@ -197,7 +203,7 @@ pub fn run_sweep(
         for _ in 0..jobs {
             let tx = tx.clone();
             let (next, pending) = (&next, &pending);
-            scope.spawn(move || worker(pending, next, opts, stop, tx));
+            scope.spawn(move || worker(pending, threads, next, opts, stop, tx));
         }
         drop(tx);
         for (run, result) in rx {

@@ -167,6 +167,7 @@ async fn health(State(svc): Svc) -> Result<Json<Value>, ApiError> {
         "version": contrail::VERSION,
         "backend": svc.backend.name(),
         "workers": svc.workers,
+        "threads_per_run": svc.threads_per_run,
         "runs": svc.catalogue.counts()?,
     })))
 }

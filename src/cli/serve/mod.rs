@@ -41,6 +41,10 @@ pub struct ServeArgs {
     /// Runs solved at a time (default: one per core).
     #[arg(long, value_name = "N")]
     pub workers: Option<usize>,
+    /// Threads of each run (default: the cores divided among the workers, at least one;
+    /// with the Slurm backend 1, asked of Slurm as --cpus-per-task).
+    #[arg(long, value_name = "N")]
+    pub threads_per_run: Option<usize>,
     /// Require this token on every request (`Authorization: Bearer TOKEN` or `?token=`).
     #[arg(long, env = "CONTRAIL_TOKEN", hide_env_values = true)]
     pub token: Option<String>,
@@ -142,12 +146,17 @@ pub fn serve(a: ServeArgs) -> anyhow::Result<ExitCode> {
             poll: Duration::from_millis(500),
         },
     };
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cores = contrail::threads::available_cores();
     let workers = a.workers.unwrap_or(match backend {
         Backend::Local => cores,
         Backend::Slurm { .. } => 64,
     });
+    let threads_per_run = a.threads_per_run.unwrap_or(match backend {
+        Backend::Local => contrail::threads::share(cores, workers),
+        Backend::Slurm { .. } => 1,
+    });
     let mut svc = Service::new(data.clone(), cat, backend, workers.max(1))?;
+    svc.threads_per_run = threads_per_run.max(1);
     svc.token = a.token.clone();
     svc.limits.elements = a.max_elements;
     let svc = Arc::new(svc);
@@ -160,10 +169,12 @@ pub fn serve(a: ServeArgs) -> anyhow::Result<ExitCode> {
             .map_err(|e| BadInput(format!("{}:{}: cannot listen: {e}", a.bind, a.port)))?;
         let addr = listener.local_addr()?;
         println!(
-            "contrail serve: listening on http://{addr} (data {}, {} {} workers)",
+            "contrail serve: listening on http://{addr} (data {}, {} {} workers, {} thread{} per run)",
             data.display(),
             svc.workers,
-            svc.backend.name()
+            svc.backend.name(),
+            svc.threads_per_run,
+            if svc.threads_per_run == 1 { "" } else { "s" }
         );
         axum::serve(listener, api::app(svc.clone()))
             .with_graceful_shutdown(stop_signal(svc.clone()))

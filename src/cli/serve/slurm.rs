@@ -24,7 +24,7 @@ fn progress_file(run: &RunRow) -> String {
 /// The batch script of a run.
 pub fn script(svc: &Service, run: &RunRow) -> String {
     let mut line = quote(&svc.exe.display().to_string());
-    for a in run_args(run, &progress_file(run)) {
+    for a in run_args(run, &progress_file(run), svc.threads_per_run) {
         line.push(' ');
         line.push_str(&quote(&a));
     }
@@ -50,7 +50,7 @@ fn submit(svc: &Service, run: &RunRow) -> Result<String, String> {
             "--output={}",
             svc.data.join("runs").join(format!("{}.slurm.out", run.id)).display()
         ))
-        .arg("--cpus-per-task=1")
+        .arg(format!("--cpus-per-task={}", svc.threads_per_run))
         .args(sbatch_args)
         .arg(&path)
         .output()

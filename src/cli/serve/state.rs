@@ -67,6 +67,8 @@ pub struct Service {
     /// This binary: the solver processes are `EXE run ...`.
     pub exe: PathBuf,
     pub workers: usize,
+    /// Threads of each run (`contrail run --threads`; Slurm's `--cpus-per-task`).
+    pub threads_per_run: usize,
     pub token: Option<String>,
     pub limits: Limits,
     stopping: AtomicBool,
@@ -82,6 +84,7 @@ impl Service {
             backend,
             exe: std::env::current_exe()?,
             workers,
+            threads_per_run: 1,
             token: None,
             limits: Limits::default(),
             stopping: AtomicBool::new(false),

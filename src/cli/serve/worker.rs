@@ -14,7 +14,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 /// The `contrail run` arguments of a run, writing its progress to `progress`.
-pub fn run_args(run: &RunRow, progress: &str) -> Vec<String> {
+pub fn run_args(run: &RunRow, progress: &str, threads: usize) -> Vec<String> {
     let mut a = vec!["run".to_string(), run.scene_ref.clone()];
     for s in &run.sets {
         a.push("--set".into());
@@ -29,6 +29,8 @@ pub fn run_args(run: &RunRow, progress: &str) -> Vec<String> {
             "--quiet",
             "--positions-every",
             &run.positions_every.max(1).to_string(),
+            "--threads",
+            &threads.to_string(),
         ]
         .map(String::from),
     );
@@ -103,7 +105,7 @@ pub fn tail(text: &str, max: usize) -> String {
 
 fn solve_local(svc: &Service, run: &RunRow) {
     let mut cmd = Command::new(&svc.exe);
-    cmd.args(run_args(run, "-"))
+    cmd.args(run_args(run, "-", svc.threads_per_run))
         .current_dir(&svc.data)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
