@@ -2,7 +2,7 @@
 //! recorder (file, positions every increment) and with the rerun file sink.
 //!
 //! `cargo bench --bench recording_overhead`. On a busy 2-core machine wall times are noisy;
-//! pinning to one core (`CONTRAIL_THREADS=1 taskset -c 1 target/release/deps/recording_overhead-* --bench`)
+//! pinning to one core (`taskset -c 1 target/release/deps/recording_overhead-* --bench`)
 //! counts the compression and batcher threads in full and gives steadier ratios.
 
 use contrail::problem::Problem;
