@@ -63,7 +63,7 @@ for _ in $(seq "$REPEAT"); do
     R[two1]+="$(two --threads 1);"
     R[two]+="$(two);"
     R[svc1]+="$(service --threads-per-run 1) "
-    R[svc]+="$(service --threads-per-run "$CORES") "
+    R[svc]+="$(service) "
 done
 pairs() { tr ';' '\n' | sed '/^$/d'; }
 base=$(echo "${R[alone1]}" | best)
@@ -77,7 +77,7 @@ echo "| one run alone | $a1 s | $a s | $(ratio "$a") |"
 t1=$(echo "${R[two1]}" | pairs | worst_of_pairs); t=$(echo "${R[two]}" | pairs | worst_of_pairs)
 echo "| two runs side by side (the slower of the two) | $t1 s | $t s | $(ratio "$t") |"
 s1=$(echo "${R[svc1]}" | best); s=$(echo "${R[svc]}" | best)
-echo "| service, 2 workers, four runs (until all ended) | $s1 s | $s s | $(ratio "$s") |"
+echo "| service, 2 workers, four runs recorded (until all ended; default: the service's share, cores / workers) | $s1 s | $s s | $(ratio "$s") |"
 echo
 echo "Phases of one run alone (the run's own account):"
 echo
