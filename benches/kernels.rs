@@ -123,10 +123,11 @@ fn crossing_point(scheme: TransferKind, mu: f64) -> PointProblem {
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
         multiplier: None,
         at_vertex: None,
+        rule: contrail::contact::decision::Rule::Penalty,
+        kink: contrail::contact::decision::Kink::Open,
+        warm: false,
     }
 }
 

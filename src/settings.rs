@@ -51,54 +51,41 @@ impl Default for Stepping {
     }
 }
 
-/// Line-search rule.
+/// How the contact points' states are decided at a Newton iterate
+/// ([`crate::contact::decision`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
-pub enum LineSearch {
-    /// Find `s` with `|Δu·R(u + sΔu)| ≤ 0.8 |Δu·R(u)|` (regula falsi on the slope of the
-    /// potential along the correction; Crisfield, Non-linear Finite Element Analysis of
-    /// Solids and Structures, Vol. 1 (1991) §9.3.2; Matthies & Strang, IJNME 14 (1979)).
-    /// For a conservative problem this minimises the energy along the correction, so
-    /// contact points switching open/closed cannot make Newton cycle between two iterates.
-    /// With a frictional point in slip the forces have no potential: that iteration
-    /// backtracks on `‖R‖` instead.
+pub enum ActiveSet {
+    /// From the augmented contact forces of the Alart–Curnier functions, weighted by the
+    /// bodies' stiffness against the penalty: the same solution, decided in the model's own
+    /// scale whatever the penalty.
     #[default]
-    Slope,
-    /// Halve `s` until `‖R(u + sΔu)‖ < (1 − 10⁻⁴ s) ‖R(u)‖` (at most 8 halvings).
-    Residual,
+    Augmented,
+    /// From the penalty forces of the displacements alone (the seed's rule; the augmented
+    /// rule with unit weights), for comparisons.
+    Penalty,
 }
 
 /// Newton–Raphson settings.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct NewtonSettings {
+    /// Corrections per attempt at an increment before it is cut back.
     pub max_iterations: usize,
-    /// Iterations beyond `max_iterations` that Newton may take while the contact active set
-    /// is still settling: an iteration that leaves the points' decisions (open, stick, slip,
-    /// and their segments) in a pattern not met before in the attempt is progress and
-    /// extends the budget by one, up to this many (0: never). A contact front that moves
-    /// one node per iteration — a sheet peeling off a facet, a touchdown zone travelling
-    /// along a beam — needs as many iterations as it has nodes to cross, at any step size;
-    /// a pattern met again (a cycle) extends nothing.
-    pub max_settling_iterations: usize,
-    /// Converged when `‖R‖ ≤ residual_tol · F_ref` (F_ref: norm of the internal forces) …
+    /// Converged when `‖R‖ ≤ residual_tol · F_ref` (`F_ref`: the norm of the reactions and
+    /// loads at the attempt's first iterate, never below the run's largest converged one) …
     pub residual_tol: f64,
-    /// … or `‖R‖ ≤ residual_abs`, …
+    /// … or `‖R‖ ≤ residual_abs` (a force: 0, the default, leaves only the relative test and
+    /// the round-off floor, both in the model's own scale), …
     pub residual_abs: f64,
     /// … and the energy norm `|Δu·R|` of the last correction is `≤ energy_tol` times that of
     /// the first iteration of the increment.
     pub energy_tol: f64,
-    /// Line search along each Newton correction (see [`LineSearch`]).
-    pub line_search: bool,
-    /// Which line search: on the slope of the energy along the correction (default) or
-    /// backtracking on the residual norm.
-    pub line_search_rule: LineSearch,
     /// The iteration is declared divergent when `‖R‖` exceeds this multiple of
     /// `max(‖R₀‖, F_ref)`.
     pub divergence_factor: f64,
-    /// A contact point whose state or segment changed this many times within one attempt
-    /// is held fixed for the rest of it and verified at convergence (0: never).
-    pub freeze_after: u32,
+    /// How the contact states are decided at each iterate (see [`ActiveSet`]).
+    pub active_set: ActiveSet,
     /// When to check the assembled tangent by finite differences (see [`TangentCheckWhen`]).
     pub check_tangent: TangentCheckWhen,
     /// Which linear solver factorises the tangent (see [`LinearSolver`]).
@@ -149,14 +136,11 @@ impl Default for NewtonSettings {
     fn default() -> Self {
         NewtonSettings {
             max_iterations: 25,
-            max_settling_iterations: 400,
             residual_tol: 1e-9,
-            residual_abs: 1e-10,
+            residual_abs: 0.0,
             energy_tol: 1e-16,
-            line_search: false,
-            line_search_rule: LineSearch::Slope,
             divergence_factor: 1e8,
-            freeze_after: 4,
+            active_set: ActiveSet::Augmented,
             check_tangent: TangentCheckWhen::OnFailure,
             linear_solver: LinearSolver::Auto,
             threads: 0,

@@ -35,7 +35,7 @@ fn topics(bytes: &[u8]) -> BTreeMap<String, usize> {
 fn only_the_iterations_of_failed_attempts_are_written_when_asked() {
     // two iterations allowed (none more while the active set settles): some increments are
     // cut back and converge at the next attempt
-    let sets = ["solver.max_iterations=2", "solver.max_settling_iterations=0"];
+    let sets = ["solver.max_iterations=2"];
     let (bytes, mem) = record("crossing", &sets, opts_failed());
     let r = Recording::from_bytes(&bytes, "failed-only.mcap").unwrap();
     let converged: BTreeMap<usize, usize> = mem
@@ -61,11 +61,7 @@ fn only_the_iterations_of_failed_attempts_are_written_when_asked() {
     assert!(r.outcome.is_some() && r.increments.len() == mem.increments.len());
     assert!(mem.increments.iter().any(|i| i.cutbacks > 0));
     // a failed run keeps the iterations of the increment it failed in
-    let sets = [
-        "solver.max_iterations=2",
-        "solver.max_settling_iterations=0",
-        "stepping.max_cutbacks=0",
-    ];
+    let sets = ["solver.max_iterations=2", "stepping.max_cutbacks=0"];
     let (bytes, mem) = record("crossing", &sets, opts_failed());
     let r = Recording::from_bytes(&bytes, "failed.mcap").unwrap();
     let failed = mem

@@ -144,7 +144,7 @@ fn the_same_run_is_catalogued_once_sweeps_get_the_sweep_ids_and_filters_find_run
     let (_, l) = srv.get("/api/runs?scene=block-slide&status=completed");
     assert_eq!(l["total"], 3);
 
-    let failing = json!({ "scene": "strip-channel", "set": ["solver.max_iterations=2", "solver.max_settling_iterations=0", "stepping.max_cutbacks=0"] });
+    let failing = json!({ "scene": "strip-channel", "set": ["solver.max_iterations=2", "stepping.max_cutbacks=0"] });
     let (_, f) = srv.post("/api/runs", &failing);
     let f = srv.wait_ended(f["id"].as_str().unwrap(), 60);
     assert_eq!(f["status"], "failed");

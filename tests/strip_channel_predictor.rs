@@ -3,9 +3,12 @@
 //! refined once, on 240×8.
 //!
 //! From v ≈ 5.4 on, the predictor's extrapolated strip is the chord past the corner C, so C
-//! comes out *open* at the predicted start of most increments. Without the hold of
-//! `hold_predicted_lift_offs` the first correction then let the strip swing about its last
+//! comes out *open* at the predicted start of most increments. Without a start from the
+//! converged contact set the first correction then let the strip swing about its last
 //! support and the line search cut it to s = 0.001 (302 of the full run's 1 200 increments).
+//! The contact Newton now starts each increment from the converged contact set (the first
+//! iterate decides contact by the converged normal forces, `contact::decision`): the same
+//! remedy, as a rule of the method.
 //!
 //! Reference and tolerances:
 //! * at most 2 increments with v ≥ 5.39 whose first correction is cut below s = 0.01, at
@@ -13,7 +16,9 @@
 //!   it; at Δv = 0.005 on 120×4 there were none either way, so the step is not refined here);
 //! * on 120×4, the same equilibrium path as the run without the predictor (`stepping.predictor =
 //!   "last"`, whose first iterate is the converged state): the monitored force at every
-//!   increment within 1e-6 relative (both runs converge to `residual_tol = 1e-9`), but for
+//!   pseudo-time both runs converged at within 1e-6 relative (at least 30: the run without
+//!   the predictor cuts back near v = 0.33, measured 6 cut-backs, and its later
+//!   increments fall at other times) (both runs converge to `residual_tol = 1e-9`), but for
 //!   at most 2 increments in which the corner C crosses to the next face segment in either
 //!   run: there C sits within round-off of a face node, the equilibrium is not unique (which
 //!   segment C converges on depends on where Newton starts), and the two forces only agree
@@ -60,11 +65,20 @@ fn predicted_starts_do_not_lose_the_corner_and_the_path_is_the_same() {
     );
 
     let without = window("[120,4]", "last", 560);
-    assert_eq!(with.increments.len(), without.increments.len());
     let crossing = |m: &Memory, inc: usize| m.crossings.iter().any(|(i, _)| *i == inc);
     let mut at_crossings = Vec::new();
-    for (a, b) in with.increments.iter().zip(&without.increments) {
-        assert_eq!(a.t, b.t);
+    // the runs' converged increments at the same pseudo-times (a cut-back adds increments)
+    let same_t: Vec<_> = (with.increments.iter())
+        .filter_map(|a| {
+            without
+                .increments
+                .iter()
+                .find(|b| (b.t - a.t).abs() < 1e-12)
+                .map(|b| (a, b))
+        })
+        .collect();
+    assert!(same_t.len() >= 30, "{} increments at the same times", same_t.len());
+    for (a, b) in same_t {
         let (fa, fb) = (a.monitor.as_ref().unwrap().force, b.monitor.as_ref().unwrap().force);
         let tol = if crossing(&with, a.increment) || crossing(&without, a.increment) {
             1e-2

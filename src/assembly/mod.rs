@@ -114,6 +114,9 @@ pub struct Assembler {
     pub r_full: Vec<f64>,
     /// Sum of the absolute element and contact contributions per DOF (round-off scale).
     r_abs: Vec<f64>,
+    /// The residual of the contact force unknowns minus that of the penalty forces, per
+    /// DOF (zero but at contact nodes; see [`Self::merit`]).
+    r_forces: Vec<f64>,
     /// Round-off level of the internal forces from the materials: `100 ε_mach √Σ (E_e h_e)²`
     /// (`F = I + ∇u` loses the digits of a small strain below `ε_mach`, so an element's force
     /// is resolved to about `ε_mach E h` per unit thickness whatever its deformation).
@@ -226,6 +229,7 @@ impl Assembler {
             elem_slots: Vec::new(),
             r_full: vec![0.0; model.dof_count()],
             r_abs: vec![0.0; model.dof_count()],
+            r_forces: vec![0.0; model.dof_count()],
             material_floor: material_floor(model),
             energy: 0.0,
             missing: Vec::new(),
@@ -423,6 +427,7 @@ impl Assembler {
             let started = Instant::now();
             self.r_full.fill(0.0);
             self.r_abs.fill(0.0);
+            self.r_forces.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
             self.elements(model, u, alphas, with_tangent)?;
@@ -430,26 +435,26 @@ impl Assembler {
             let elements_done = Instant::now();
             self.timings.elements += elements_done - started;
             let cfg = Config { model, u, t };
-            let (r_full, r_abs, matrix, missing, dofs) = (
+            let (r_full, r_abs, r_forces, matrix, missing, dofs) = (
                 &mut self.r_full,
                 &mut self.r_abs,
+                &mut self.r_forces,
                 &mut self.matrix,
                 &mut self.missing,
                 &self.dofs,
             );
-            contact.evaluate(&cfg, &mut |nodes, r, k, fixed_scale| {
+            contact.evaluate(&cfg, &mut |nodes, r, r_eq, k, positions| {
                 let nd = 2 * nodes.len();
                 let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
-                // a node's coordinate, or the rigid geometry's when that is larger
-                let position = |j: usize| (model.nodes[nodes[j / 2]][j % 2] + u[dof(j)]).abs().max(fixed_scale);
                 for i in 0..nd {
                     r_full[dof(i)] += r[i];
+                    r_forces[dof(i)] += r_eq[i] - r[i];
                     // a penalty force is ε times a difference of positions, each known to
-                    // ε_mach |x| (the nodes', and the rigid slave's or master's that enter
-                    // the gap, `fixed_scale`): its round-off is ε_mach Σ_j |K_ij| |x_j| (the
-                    // residual criterion's floor, `roundoff`, is 1e-13 times this sum)
-                    let k_x: f64 = (0..nd).map(|j| k[nd * i + j].abs() * position(j)).sum();
-                    r_abs[dof(i)] += r[i].abs() + CONTACT_ROUNDOFF * k_x;
+                    // ε_mach |x| (`positions`: the point's coordinates about its own origin,
+                    // the rigid geometry's included): its round-off is ε_mach Σ_j |K_ij| |x_j|
+                    // (the residual criterion's floor, `roundoff`, is 1e-13 times this sum)
+                    let k_x: f64 = (0..nd).map(|j| k[nd * i + j].abs() * positions[j]).sum();
+                    r_abs[dof(i)] += r_eq[i].abs() + CONTACT_ROUNDOFF * k_x;
                 }
                 if !with_tangent {
                     return;
@@ -562,6 +567,18 @@ impl Assembler {
         )
         .map(|_| ())
         .map_err(|source| AssemblyError { element: ie, source })
+    }
+
+    /// Newton's merit function at the last assembly: `‖R(u, N, T)‖² + Σ C²`, the squared
+    /// residual of the mixed system — equilibrium with the contact force unknowns at the
+    /// free DOFs, and the complementarity residuals of every contact point (`contact`, as
+    /// evaluated by that assembly; see [`crate::contact::decision`]).
+    pub fn merit(&self, contact: &ContactSystem) -> f64 {
+        let eq: f64 = (self.dofs.eq.iter().zip(self.r_full.iter().zip(&self.r_forces)))
+            .filter(|(e, _)| e.is_some())
+            .map(|(_, (r, f))| (r + f) * (r + f))
+            .sum();
+        eq + contact.complementarity2()
     }
 
     /// Residual restricted to the free equations.

@@ -86,6 +86,7 @@ mod tests {
             }),
             monitors: vec![],
             reaction_total: [0.0; 2],
+            ..Default::default()
         };
         assert_eq!(
             message(&rec, 11.0, 1, 3),

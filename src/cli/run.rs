@@ -304,6 +304,36 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
                 ),
             );
     }
+    if s.history_jumps > 0 {
+        row(
+            o,
+            "WARNING",
+            format!(
+                "the friction history jumped at {} of {} crossings (the transfer scheme does not carry it across segments): the force history is wrong from the first; see `/log`",
+                s.history_jumps, s.crossings
+            ),
+        );
+    }
+    if s.on_extension > 0 || s.line_search_failures > 0 {
+        row(
+            o,
+            "note",
+            format!(
+                "{} increments converged with contact points on a segment's extension (a node crossed back and forth); {} line searches found no decrease (their shortest step was taken)",
+                s.on_extension, s.line_search_failures
+            ),
+        );
+    }
+    if s.front_iterations > 0 {
+        row(
+            o,
+            "note",
+            format!(
+                "{} Newton iterations reached an active set not met before in their attempt (a contact front still moving) and extended the iteration limit by one each",
+                s.front_iterations
+            ),
+        );
+    }
     if let Some(p) = &s.deep_penetration {
         row(
             o,

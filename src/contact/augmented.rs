@@ -127,6 +127,7 @@ mod tests {
             t1,
             state,
             t1_carried: carried,
+            complementarity: [0.0; 2],
         }
     }
 

@@ -19,6 +19,40 @@ impl Config<'_> {
         [x[0] + self.u[2 * n], x[1] + self.u[2 * n + 1]]
     }
 
+    /// Current position of node `n` about `origin`: `(X − origin) + u`, the difference of
+    /// the reference positions first (exact for nearby points), then the displacement.
+    pub(super) fn node_about(&self, n: usize, origin: [f64; 2]) -> [f64; 2] {
+        let x = self.model.nodes[n];
+        [
+            (x[0] - origin[0]) + self.u[2 * n],
+            (x[1] - origin[1]) + self.u[2 * n + 1],
+        ]
+    }
+
+    /// The reference position of a slave point: the origin its contact kernel computes
+    /// about (see [`super::system`]'s `local_problem`).
+    pub(super) fn slave_origin(&self, s: Slave) -> [f64; 2] {
+        match s {
+            Slave::Node(n) => self.model.nodes[n],
+            Slave::RigidPoint(r) => self.model.rigid[r].vertex(0).expect("validated by the scene builder"),
+            Slave::RigidVertex(r, v) => self.model.rigid[r].vertex(v).expect("validated by the scene builder"),
+        }
+    }
+
+    /// Current position of a rigid slave point about `origin` (its reference position
+    /// minus the origin first, then the rigid body's travel).
+    pub(super) fn slave_pos_about(&self, s: Slave, origin: [f64; 2]) -> [f64; 2] {
+        let (r, v) = match s {
+            Slave::Node(n) => return self.node_about(n, origin),
+            Slave::RigidPoint(r) => (r, 0),
+            Slave::RigidVertex(r, v) => (r, v),
+        };
+        let body = &self.model.rigid[r];
+        let at = body.vertex(v).expect("validated by the scene builder");
+        let o = body.offset(self.t);
+        [(at[0] - origin[0]) + o[0], (at[1] - origin[1]) + o[1]]
+    }
+
     /// Current position of a slave point.
     pub fn slave_pos(&self, s: Slave) -> [f64; 2] {
         let (r, v) = match s {

@@ -15,6 +15,8 @@ pub struct PointHistory {
     pub xi: f64,
     /// Covariant traction `T_1` on `segment`.
     pub t1: f64,
+    /// Normal force `N` (zero when open).
+    pub normal: f64,
     pub a11: f64,
     /// Gap at the last converged increment of a point that was paired but open (NaN
     /// otherwise): its first touch is interpolated from it.
@@ -47,6 +49,7 @@ impl Default for PointHistory {
             closed: false,
             xi: f64::NAN,
             t1: 0.0,
+            normal: 0.0,
             a11: f64::NAN,
             gap: f64::NAN,
             crossings: 0,

@@ -2,6 +2,7 @@
 
 pub mod augmented;
 pub mod config;
+pub mod decision;
 pub mod events;
 pub mod geometry;
 pub mod history;

@@ -18,8 +18,9 @@
 //! Sign: `T_1` acts on the slave (see [`super::law`]), so the slave's share of `r` is
 //! `−T_1 ρ^1` and the force on the slave is `+T`.
 
+use super::decision::{self, Kink, Rule};
 use super::geometry::{Projection, SegmentGeom};
-use super::law::{return_map, ContactLaw, ContactState};
+use super::law::{ContactLaw, ContactState};
 use super::scalar::{lift, Scalar, V2};
 use super::transfer::{OldPoint, StoredTraction, TransferInput, TransferKind};
 use super::vertex;
@@ -92,16 +93,15 @@ pub struct PointProblem {
     /// `None` when the point was open at the last converged increment (no friction
     /// history: the first closing increment is frictionless, its end fixes the anchor).
     pub closed: Option<Closed>,
-    /// A state held fixed by the solver (a point that chattered within an increment):
-    /// `Open` ignores penetration, `Stick`/`Slip` keep the penalty active whatever the sign
-    /// of the gap. Stick or slip is still the return mapping's, on the data (see
-    /// [`return_map`]): only open/closed is held. `None`: decided by the data.
-    pub forced: Option<ContactState>,
-    /// Stick held by the solver for the first correction of an attempt (an elastic
-    /// predictor, see `solver/active_set.rs`): a closed point returns its trial traction
-    /// `T_1 = T_1^tr` and the stick tangent, whatever the cone says. `false`: the return
-    /// mapping decides.
-    pub stick_held: bool,
+    /// Who decides the point's state: the penalty function alone, or the augmented force
+    /// unknowns of Newton's iterate ([`super::decision`]).
+    pub rule: Rule,
+    /// Which side of the normal kink a point touching without force takes
+    /// ([`decision::Kink`]).
+    pub kink: Kink,
+    /// The state is decided by the force unknowns alone ([`Rule::deciding_by_forces`]: the
+    /// first iterate of an attempt); the complementarity residuals keep the rule's weights.
+    pub warm: bool,
     /// `Some(±1)`: the point is in the wedge of a concave vertex of the master at that end of
     /// `B` and is pinned to the vertex (point-to-node form, [`super::vertex`]).
     pub at_vertex: Option<f64>,
@@ -139,6 +139,33 @@ pub struct PointEval<S: Scalar> {
     /// correction `Λ √a11` (the tangential multiplier `λ_T`). Only worked out for an
     /// augmented point (zero otherwise).
     pub t1_carried: f64,
+    /// The complementarity residuals `[C_N, C_T]` of the rule at this state (zero under
+    /// [`Rule::Penalty`]; see [`decision::complementarity`]).
+    pub complementarity: [f64; 2],
+}
+
+/// What Newton's update of the force unknowns needs of a closed point: the penalty forces
+/// in the decided state and their gradients with respect to the local unknowns (slot `i`
+/// owns `2i, 2i + 1`), and the metric that turns `T_1` into the physical traction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Linearization {
+    pub normal: f64,
+    pub d_normal: [f64; 2 * MAX_NODES],
+    pub t1: f64,
+    pub d_t1: [f64; 2 * MAX_NODES],
+    pub a11: f64,
+}
+
+impl Default for Linearization {
+    fn default() -> Self {
+        Linearization {
+            normal: 0.0,
+            d_normal: [0.0; 2 * MAX_NODES],
+            t1: 0.0,
+            d_t1: [0.0; 2 * MAX_NODES],
+            a11: 1.0,
+        }
+    }
 }
 
 fn seg_geom<S: Scalar>(src: &SegSource, q: &[V2<S>]) -> SegmentGeom<S> {
@@ -184,7 +211,8 @@ impl PointProblem {
         slave.max(piece_scale(&self.seg_b)).max(history)
     }
 
-    /// Evaluate gap, projection, trial and returned traction for node positions `q`.
+    /// Evaluate gap, projection, trial and returned traction for node positions `q`, the
+    /// state decided by [`Self::rule`].
     pub fn evaluate<S: Scalar>(&self, q: &[V2<S>]) -> PointEval<S> {
         let rs = self.slave_position(q);
         let gb = seg_geom(&self.seg_b, q);
@@ -194,10 +222,19 @@ impl PointProblem {
         };
         let zero = S::from(0.0);
         let lambda_n = self.multiplier.map_or(0.0, |m| m.normal);
-        let open = match self.forced {
-            Some(state) => state == ContactState::Open,
-            None => !penetrating(proj.gap.re() - lambda_n / self.law.eps_n, proj.a11.re()),
+        let n_eps = -proj.gap * self.law.eps_n + lambda_n;
+        let sq = proj.a11.re().sqrt();
+        let touch = self.law.eps_n * TOUCH_TOLERANCE * 2.0 * sq;
+        let resting = self.law.eps_n * RESTING_TOLERANCE * 2.0 * sq;
+        let deciding = if self.warm {
+            self.rule.deciding_by_forces()
+        } else {
+            self.rule
         };
+        let (closed, n_hat) = decision::normal(&deciding, n_eps.re(), (touch, resting), self.kink);
+        // a point taken closed at the kink (resting without force) sticks: the tangential kink
+        // `|t̂| = μ N̂ = 0` taken on the same side
+        let at_kink = self.kink == Kink::Resting && n_hat <= resting;
         let mut eval = PointEval {
             proj,
             normal_force: zero,
@@ -205,35 +242,97 @@ impl PointProblem {
             t1: zero,
             state: ContactState::Open,
             t1_carried: 0.0,
+            complementarity: decision::complementarity(
+                &self.rule,
+                ContactState::Open,
+                false,
+                (0.0, 0.0),
+                0.0,
+                0.0,
+                0.0,
+            ),
         };
-        if open {
+        if !closed {
             return eval;
         }
-        eval.normal_force = -proj.gap * self.law.eps_n + lambda_n;
-        let Some(c) = self.closed else {
-            // the first closing increment is frictionless: its end fixes the anchor
-            eval.state = if self.law.mu > 0.0 {
+        let frictional = self.law.mu > 0.0;
+        let Some(c) = self.closed.filter(|_| frictional) else {
+            // frictionless, or the first closing increment (frictionless: its end fixes the
+            // anchor)
+            let state = if frictional {
                 ContactState::Stick
             } else {
                 ContactState::Slip
             };
+            eval.normal_force = n_eps;
+            eval.state = state;
+            eval.complementarity =
+                decision::complementarity(&self.rule, state, false, (n_eps.re(), n_hat), 0.0, 0.0, 0.0);
             return eval;
         };
-        let input = self.transfer_input(&c, q, &gb, proj);
+        // a first touch's fraction `s` (see [`Closed`]) from the normal force: under the
+        // augmented rule from the augmented force `N̂`, held within the linearisation and
+        // updated at each iterate (at a solution `N̂ = N_ε`). Its variation is left out: with
+        // a stiff penalty it is the penalty's amplification of a gap still settling, and the
+        // first touch's trial, `ε_T (1 − s)` times the slide since the increment began,
+        // would swing between its extremes from one iterate to the next
+        let touch_force = match self.rule {
+            Rule::Penalty => n_eps,
+            Rule::AlartCurnier { .. } => S::from(n_hat),
+        };
+        let (t1_trial, carried) = self.trial(&c, q, &gb, proj, touch_force);
+        let mu = self.law.mu;
+        let rule = self.rule;
+        let slip = |rule: &Rule, n_hat: f64| decision::tangential(rule, mu, t1_trial.re() / sq, n_hat, n_eps.re());
+        eval.t1_trial = t1_trial;
+        eval.t1_carried = carried;
+        let sign = slip(&deciding, n_hat).filter(|_| !at_kink);
+        let (t1, state) = match sign {
+            None => (t1_trial, ContactState::Stick),
+            Some(s) => (n_eps * proj.a11.sqrt() * (mu * s), ContactState::Slip),
+        };
+        let c_t = (n_eps.re(), n_hat);
+        eval.complementarity =
+            decision::complementarity(&rule, state, true, c_t, t1_trial.re() / sq, sign.unwrap_or(0.0), mu);
+        PointEval {
+            normal_force: n_eps,
+            t1,
+            state,
+            ..eval
+        }
+    }
+
+    /// The trial traction `T_1^tr` of a point closed at the last converged increment (or
+    /// touching then), and the traction carried into this increment (augmented points).
+    fn trial<S: Scalar>(
+        &self,
+        c: &Closed,
+        q: &[V2<S>],
+        gb: &SegmentGeom<S>,
+        proj: Projection<S>,
+        normal: S,
+    ) -> (S, f64) {
+        let input = self.transfer_input(c, q, gb, proj);
         let mut t1_trial = self.scheme.trial(&input);
         let mut carried = match self.multiplier {
             Some(_) => self.scheme.trial(&TransferInput { eps_t: 0.0, ..input }).re(),
             None => 0.0,
         };
         if let Some(g0) = c.touch_gap.filter(|g| *g > 0.0) {
-            // anchor at the point of first touch (see [`Closed`]); a point held closed by
-            // the solver before it penetrates has not touched yet: no traction (the limit
-            // of the interpolation as the penetration falls to zero)
-            let penetration = -proj.gap;
-            let one_minus_s = if penetration.re() > 0.0 {
-                penetration / (penetration + g0) // 1 − s = −ζ / (ζ_A − ζ)
-            } else {
-                zero
+            // anchor at the point of first touch (see [`Closed`]), with the penetration the
+            // normal force stands for, `(N − λ_N)/ε_N = −ζ`. Under the penalty rule a closed
+            // point penetrates; the augmented rule may take a point closed a little before it
+            // does (its force unknown says it carries load), and there the interpolation goes
+            // on smoothly through zero penetration (down to −ζ_A/2, then held): the trial is
+            // then a smooth function of the gap for Newton, and at a solution the point
+            // penetrates as under the penalty rule
+            let lambda_n = self.multiplier.map_or(0.0, |m| m.normal);
+            let penetration = (normal - lambda_n) / self.law.eps_n;
+            let one_minus_s = match (self.rule, penetration.re()) {
+                (_, p) if p > 0.0 => penetration / (penetration + g0), // 1 − s = −ζ / (ζ_A − ζ)
+                (Rule::AlartCurnier { .. }, p) if p > -0.5 * g0 => penetration / (penetration + g0),
+                (Rule::AlartCurnier { .. }, _) => S::from(-1.0),
+                (Rule::Penalty, _) => S::from(0.0),
             };
             t1_trial *= one_minus_s;
             carried *= one_minus_s.re();
@@ -242,26 +341,7 @@ impl PointProblem {
             t1_trial += proj.a11.sqrt() * m.tangential;
             carried += proj.a11.re().sqrt() * m.tangential;
         }
-        let normal_force = eval.normal_force;
-        let (t1, state) = if self.stick_held && self.law.mu > 0.0 {
-            // the elastic predictor: also at a point touching without pressure yet (a body
-            // resting on it, whose first correction must not slide freely along it)
-            (t1_trial, ContactState::Stick)
-        } else if self.law.mu > 0.0 && normal_force.re() <= 0.0 {
-            // touching without pressure (see [`touching`]): no friction to transmit, and no
-            // friction stiffness either (the slip branch's `μ ∂N` would couple the normal
-            // and tangential motion of a point that carries nothing)
-            (zero, ContactState::Slip)
-        } else {
-            return_map(&self.law, t1_trial, normal_force, proj.a11)
-        };
-        PointEval {
-            t1_trial,
-            t1,
-            state,
-            t1_carried: carried,
-            ..eval
-        }
+        (t1_trial, carried)
     }
 
     fn slave_position<S: Scalar>(&self, q: &[V2<S>]) -> V2<S> {
@@ -317,21 +397,45 @@ impl PointProblem {
     /// Local residual `r` (length `2 n_nodes`) and tangent `k` (row-major) for this point;
     /// returns the plain evaluation. Slot `i` owns local DOFs `2i, 2i + 1`.
     pub fn residual_tangent(&self, r: &mut [f64], k: &mut [f64]) -> PointEval<f64> {
+        let nd = 2 * self.n_nodes;
+        let mut r_eq = [0.0; 2 * MAX_NODES];
+        let mut lin = Linearization::default();
+        self.local(r, &mut r_eq[..nd], k, &mut lin)
+    }
+
+    /// Everything Newton needs of this point: the residual `r` of the penalty forces in
+    /// the decided state (the condensed system's right-hand side), the residual `r_eq` of
+    /// the force unknowns (`−N ∇ζ − T_1 ∇ξ` with the unknowns of [`Rule::AlartCurnier`]; equal
+    /// to `r` under [`Rule::Penalty`]), the condensed tangent `k` and the linearisation of
+    /// the penalty forces. Returns the plain evaluation.
+    ///
+    /// `k = −∇ζ ∇Nᵀ − N̄ ∇²ζ − ∇ξ ∇T_1ᵀ − T̄_1 ∇²ξ`: the gradients are the penalty forces'
+    /// in the decided state (`∇N = −ε_N ∇ζ`), the Hessian terms weigh the geometry by the
+    /// force unknowns `N̄`, `T̄_1` (the penalty's own under [`Rule::Penalty`]): the Newton
+    /// matrix of the mixed system with the force unknowns condensed (see
+    /// [`super::decision`]).
+    pub fn local(&self, r: &mut [f64], r_eq: &mut [f64], k: &mut [f64], lin: &mut Linearization) -> PointEval<f64> {
         match self.n_nodes {
             0 => self.evaluate_f64(),
-            1 => self.rk::<2>(r, k),
-            2 => self.rk::<4>(r, k),
-            3 => self.rk::<6>(r, k),
-            4 => self.rk::<8>(r, k),
-            5 => self.rk::<10>(r, k),
-            6 => self.rk::<12>(r, k),
-            7 => self.rk::<14>(r, k),
-            8 => self.rk::<16>(r, k),
-            _ => self.rk::<18>(r, k),
+            1 => self.rk::<2>(r, r_eq, k, lin),
+            2 => self.rk::<4>(r, r_eq, k, lin),
+            3 => self.rk::<6>(r, r_eq, k, lin),
+            4 => self.rk::<8>(r, r_eq, k, lin),
+            5 => self.rk::<10>(r, r_eq, k, lin),
+            6 => self.rk::<12>(r, r_eq, k, lin),
+            7 => self.rk::<14>(r, r_eq, k, lin),
+            8 => self.rk::<16>(r, r_eq, k, lin),
+            _ => self.rk::<18>(r, r_eq, k, lin),
         }
     }
 
-    fn rk<const N: usize>(&self, r: &mut [f64], k: &mut [f64]) -> PointEval<f64> {
+    fn rk<const N: usize>(
+        &self,
+        r: &mut [f64],
+        r_eq: &mut [f64],
+        k: &mut [f64],
+        lin: &mut Linearization,
+    ) -> PointEval<f64> {
         // slot positions as dual numbers, on the stack (no allocation per point)
         let q: [V2<Dual2SVec64<N>>; MAX_NODES] = std::array::from_fn(|i| {
             if i < self.n_nodes {
@@ -345,28 +449,54 @@ impl PointProblem {
         });
         let e = self.evaluate(&q[..self.n_nodes]);
         r[..N].fill(0.0);
+        r_eq[..N].fill(0.0);
         k[..N * N].fill(0.0);
-        if e.state != ContactState::Open {
-            // r = −N ∇ζ − T_1 ∇ξ, K = −∇ζ ∇Nᵀ − N ∇²ζ − ∇ξ ∇T_1ᵀ − T_1 ∇²ξ; with the penalty
-            // N = λ_N − ε_N ζ, so ∇N = −ε_N ∇ζ
-            let zeta = e.proj.gap;
-            let xi = e.proj.xi;
-            let gz = zeta.v1.unwrap_generic(U1, Const::<N>);
+        *lin = Linearization {
+            a11: e.proj.a11.re,
+            ..Linearization::default()
+        };
+        let zeta = e.proj.gap;
+        let xi = e.proj.xi;
+        let gz = zeta.v1.unwrap_generic(U1, Const::<N>);
+        let gx = xi.v1.unwrap_generic(U1, Const::<N>);
+        // the force unknowns (the penalty's own forces under the penalty rule)
+        let (n_bar, t_bar) = match self.rule {
+            Rule::AlartCurnier { forces, .. } => (forces.normal, forces.tangential * e.proj.a11.re.sqrt()),
+            Rule::Penalty => (e.normal_force.re, e.t1.re),
+        };
+        if e.state == ContactState::Open {
+            // the force unknowns of an open point go to zero in one correction (`ΔN = −N`):
+            // no force in the condensed right-hand side, and their geometric terms are left
+            // out of the Newton matrix (with a tensile unknown on a curved master they
+            // stiffen a flimsy body against the correction that opens it; measured on the
+            // capstan belt: 29 cut-backs with them, 5 without)
+            for i in 0..N {
+                r_eq[i] = -n_bar * gz[i] - t_bar * gx[i];
+            }
+        } else {
+            // r = −N ∇ζ − T_1 ∇ξ with the penalty forces; K as in the docs above
             let hz = zeta.v2.unwrap_generic(Const::<N>, Const::<N>);
-            let gx = xi.v1.unwrap_generic(U1, Const::<N>);
             let hx = xi.v2.unwrap_generic(Const::<N>, Const::<N>);
+            let gn = e.normal_force.v1.unwrap_generic(U1, Const::<N>);
             let gt = e.t1.v1.unwrap_generic(U1, Const::<N>);
-            let (en, n, t) = (self.law.eps_n, e.normal_force.re, e.t1.re);
+            let (n, t) = (e.normal_force.re, e.t1.re);
             for i in 0..N {
                 r[i] = -n * gz[i] - t * gx[i];
+                r_eq[i] = -n_bar * gz[i] - t_bar * gx[i];
+                lin.d_normal[i] = gn[i];
+                lin.d_t1[i] = gt[i];
                 for j in 0..N {
-                    k[N * i + j] = en * gz[i] * gz[j] - n * hz[(i, j)] - gx[i] * gt[j] - t * hx[(i, j)];
+                    k[N * i + j] = -gz[i] * gn[j] - n_bar * hz[(i, j)] - gx[i] * gt[j] - t_bar * hx[(i, j)];
                 }
             }
+            (lin.normal, lin.t1) = (n, t);
             if self.at_vertex.is_some() && self.law.mu > 0.0 {
                 // ξ is pinned (∇ξ = 0 above): the traction acts along the vertex tangent
                 let rs = self.slave_position(&q[..self.n_nodes]);
                 vertex::add_tangential(rs, e.proj.rho, e.t1, e.proj.a11, &mut r[..N], &mut k[..N * N]);
+                if matches!(self.rule, Rule::Penalty) {
+                    r_eq[..N].copy_from_slice(&r[..N]);
+                }
             }
         }
         PointEval {
@@ -382,6 +512,7 @@ impl PointProblem {
             t1: e.t1.re,
             state: e.state,
             t1_carried: e.t1_carried,
+            complementarity: e.complementarity,
         }
     }
 }

@@ -79,8 +79,9 @@ fn problem(face: Face, scheme: TransferKind, came: Came, mu: f64) -> PointProble
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     }

@@ -36,14 +36,20 @@ fn base(scheme: TransferKind, law: ContactLaw, stored_t1: f64) -> PointProblem {
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     }
 }
 
 pub(super) fn fd_check(p: &PointProblem, expect: ContactState) {
+    fd_check_at(p, expect, 1e-5);
+}
+
+/// [`fd_check`] with a relative tolerance `tol` on the tangent's entries.
+pub(super) fn fd_check_at(p: &PointProblem, expect: ContactState, tol: f64) {
     let n = 2 * p.n_nodes;
     let mut r = vec![0.0; n];
     let mut k = vec![0.0; n * n];
@@ -64,7 +70,7 @@ pub(super) fn fd_check(p: &PointProblem, expect: ContactState) {
         for i in 0..n {
             let fd = (rp[i] - rm[i]) / (2.0 * h);
             assert!(
-                (fd - k[n * i + j]).abs() < 1e-5 * kmax,
+                (fd - k[n * i + j]).abs() < tol * kmax,
                 "{:?} {expect:?}: K[{i},{j}] = {} vs FD {fd}",
                 p.scheme,
                 k[n * i + j]
@@ -204,8 +210,9 @@ fn rigid_arc_master_tangent_matches_fd() {
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     };
@@ -260,8 +267,9 @@ fn slave_force_is_normal_push_plus_traction() {
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     };
@@ -275,45 +283,53 @@ fn slave_force_is_normal_push_plus_traction() {
     assert!((e.t1 + 5.0).abs() < 1e-12);
 }
 
-/// A frozen point (the solver holds it closed) inside the Coulomb cone is in stick: freezing
-/// holds open/closed only, never the slip branch, and the stick tangent stays consistent.
+/// Under the augmented rule with the force unknowns at the penalty's own forces the point
+/// is the penalty's: same state, and the condensed tangent is the derivative of the
+/// residual (its Hessian terms are weighted by the unknowns, equal to the penalty forces).
 #[test]
-fn frozen_closed_point_inside_the_cone_sticks_with_a_consistent_tangent() {
-    for forced in [ContactState::Slip, ContactState::Stick] {
-        let mut p = base(Continuous, ContactLaw { mu: 1e3, ..LAW }, 0.8);
-        p.forced = Some(forced);
-        fd_check(&p, ContactState::Stick);
+fn augmented_rule_at_the_penalty_forces_has_the_penalty_tangent() {
+    use crate::contact::decision::{Forces, Rule};
+    for (mu, state) in [(1e3, ContactState::Stick), (0.3, ContactState::Slip)] {
+        let mut p = base(Continuous, ContactLaw { mu, ..LAW }, 0.8);
+        let e = p.evaluate_f64();
+        assert_eq!(e.state, state);
+        p.rule = Rule::AlartCurnier {
+            forces: Forces {
+                normal: e.normal_force,
+                tangential: e.t1 / e.proj.a11.sqrt(),
+            },
+            rho_n: 1e-3,
+            rho_t: 1e-3,
+        };
+        // the unknowns are held while the positions move: only the points' own state
+        assert_eq!(p.evaluate_f64().state, state);
+        assert!(p.evaluate_f64().complementarity.iter().all(|c| c.abs() < 1e-12));
+        fd_check_at(&p, state, 1e-6);
     }
 }
 
-/// Along a path on which the trial traction of a frozen point reverses, the residual is
-/// continuous (it jumped by `2 μ N √a11` when the frozen slip branch was held).
+/// A point whose force unknown carries load stays closed under the augmented rule though
+/// its gap has opened a little (the penalty would open it), and says by how much its
+/// unknown and the penalty force differ.
 #[test]
-fn frozen_point_residual_is_continuous_when_the_trial_traction_reverses() {
-    let mut p = base(Continuous, ContactLaw { mu: 0.3, ..LAW }, 0.0);
-    let c = p.closed.as_mut().unwrap();
-    c.seg_a = SegSource::Face([1, 2]);
-    c.path = Path {
-        direction: 0,
-        between: 0.0,
+fn a_force_unknown_that_carries_load_keeps_its_point_closed() {
+    use crate::contact::decision::{Forces, Rule};
+    let mut p = base(Continuous, ContactLaw { mu: 1e3, ..LAW }, 0.8);
+    p.x[0][1] -= 0.03; // the slave on the other side of the face: open by the penalty rule
+    assert_eq!(p.evaluate_f64().state, ContactState::Open);
+    let rho = 1e-4;
+    p.rule = Rule::AlartCurnier {
+        forces: Forces {
+            normal: 1.0,
+            tangential: 0.0,
+        },
+        rho_n: rho,
+        rho_t: rho,
     };
-    // anchor at the slave's current projection: the trial traction is zero there
-    let xi = p.evaluate_f64().proj.xi;
-    p.closed.as_mut().unwrap().stored.xi = xi;
-    p.forced = Some(ContactState::Slip);
-    let residual = |dx: f64| {
-        let mut q = p;
-        q.x[0][0] += dx;
-        let mut r = [0.0; 8];
-        let mut k = [0.0; 64];
-        q.residual_tangent(&mut r, &mut k);
-        r
-    };
-    let h = 1e-9;
-    let (left, right) = (residual(-h), residual(h));
-    let jump = left.iter().zip(&right).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-    let scale = residual(1e-3).iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    assert!(jump < 1e-6 * scale, "residual jumps by {jump} (scale {scale})");
+    let e = p.evaluate_f64();
+    assert_ne!(e.state, ContactState::Open);
+    // C_N = ρ (N − N_ε), N_ε = −ε ζ < 0 here
+    assert!((e.complementarity[0] - rho * (1.0 - e.normal_force)).abs() < 1e-12 && e.normal_force < 0.0);
 }
 
 /// Wedge of a concave vertex: A = [3, 1] rises to the vertex (slot 1), B = [1, 2] falls from
@@ -450,8 +466,9 @@ fn hermite_base(law: ContactLaw, crossing: bool) -> PointProblem {
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     }

@@ -6,14 +6,19 @@
 
 pub use super::config::Config;
 use super::config::SegNodes;
+use super::decision::{Forces, Kink, Rule};
 use super::events::{crossing_event, CrossingEvent, PointSnapshot};
 pub use super::history::{Decision, PointHistory, PointNow};
 use super::law::ContactState;
 use super::pairing::{self, Pairing};
-use super::point::{Closed, Multiplier, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
+use super::point::{
+    Closed, Linearization, Multiplier, Path, PointEval, PointProblem, SegSource, SlaveSource, MAX_NODES,
+};
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
-use crate::model::{ContactPair, Enforcement, Model, Slave, Smoothing};
+use crate::model::{ContactPair, Enforcement, Master, Model, Slave, Smoothing};
+
+mod unknowns;
 
 /// Contact state of all pairs.
 #[derive(Debug, Clone, Default)]
@@ -24,29 +29,56 @@ pub struct ContactSystem {
     pub pairings: Vec<Vec<Pairing>>,
     /// Search grid of each pair for points not yet tracked (built once per increment).
     grids: Vec<Option<SegmentGrid>>,
-    /// Decisions held fixed by the solver for the rest of the increment (chattering
-    /// points): the segment and the open/closed decision are kept (the kernel's `forced`
-    /// state); stick or slip is still decided by the return mapping.
-    frozen: Vec<Vec<Option<Decision>>>,
-    /// Points whose stick is held for the first correction of an attempt (see
-    /// [`super::point::PointProblem::stick_held`]); released with the frozen ones.
-    stick_held: Vec<Vec<bool>>,
-    /// Verification of frozen points: their states are free again, their segments are kept
-    /// where the projection is still (to 1 %) on the segment.
-    verifying: bool,
+    /// The force unknowns of Newton's iterate per point (see [`super::decision`]), those it
+    /// started the last correction from, and those at the correction's full step.
+    forces: Vec<Vec<Forces>>,
+    forces_base: Vec<Vec<Forces>>,
+    forces_step: Vec<Vec<Forces>>,
+    /// Each point's local nodes and penalty linearisation at the last evaluation (closed
+    /// points; `None` otherwise), for the update of its force unknowns.
+    lin: Vec<Vec<Option<(Slots, Linearization)>>>,
+    /// The weights `ρ_N, ρ_T` of each pair's augmented forces (1: the penalty rule).
+    weights: Vec<(f64, f64)>,
+    /// Every point decided by the penalty rule (the check of a converged iterate).
+    penalty_rule: bool,
+    /// Which side of the normal kink touching points take ([`Kink`]).
+    kink: Kink,
+    /// Decide the points closed at the last converged increment by their force unknowns
+    /// alone (the first iterate of an attempt).
+    warm: bool,
+    /// `Σ C²` of the complementarity residuals at the last evaluation.
+    complementarity2: f64,
+    /// The evaluation of the iterate a line search starts from (its trials are paired
+    /// against it, not against a rejected trial).
+    current_base: Vec<Vec<PointNow>>,
+    /// Per point, the segment it left at its last change of segment in this attempt (a
+    /// return to it is a crossing back: see [`Self::pair`]).
+    left: Vec<Vec<Option<usize>>>,
     /// Augmented-Lagrangian multipliers of every point (zero, and unused, in penalty pairs;
     /// see [`super::augmented`]).
     pub(super) multipliers: Vec<Vec<Multiplier>>,
     /// Points found at the last pairing to have passed through their master (see
     /// [`Self::tunnelled`]), as `(pair, slave)`.
     tunnelled: Vec<(usize, usize)>,
+    /// The points at the normal kink when the last correction was solved (flat order; see
+    /// [`Self::mark_kink_points`]).
+    kink_points: Vec<bool>,
+    /// The marked points take [`Kink::Resting`] at the evaluations until the next
+    /// [`Self::set_kink`] (see [`Self::rest_kink_points_closed`]).
+    rest_marked: bool,
 }
 
-/// Receives the local residual and tangent of one contact point: `(nodes, r, k)`.
-pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64], f64) + 'a;
+/// Receives one contact point's local contributions: its nodes, the residual of the penalty
+/// forces, the residual of the force unknowns, the tangent, and per local DOF the weight of
+/// its coordinate in the round-off of the residual: the slot's position about the point's
+/// own origin (or the fixed geometry's entering the gap where that is larger: see
+/// [`PointProblem::fixed_coordinate_scale`]) times the weight `ρ` of the complementarity
+/// residual through which the penalty force's round-off reaches Newton's residual.
+pub type LocalSink<'a> = dyn FnMut(&[usize], &[f64], &[f64], &[f64], &[f64]) + 'a;
 
 /// Local node slots of one contact point (at most [`MAX_NODES`], kept on the stack: the
 /// contact evaluation allocates nothing per point and iteration).
+#[derive(Debug, Clone, Copy)]
 pub(super) struct Slots {
     ids: [usize; MAX_NODES],
     len: usize,
@@ -93,6 +125,11 @@ pub(super) fn stored(h: &PointHistory) -> StoredTraction {
 /// The local problem of one slave point on segment `b`, with the history `(stored, A, path)`
 /// of a point that was closed at the last converged increment; returns it with the global
 /// nodes of its slots.
+///
+/// Positions are taken about the slave's reference position (its own origin): gaps and
+/// convective coordinates are differences of nearby points, and a model placed far from
+/// the coordinate origin (or moved there) then computes them from the same digits — its
+/// convergence and its round-off floor do not depend on where it sits.
 pub(super) fn local_problem(
     cfg: &Config,
     pair: &ContactPair,
@@ -104,20 +141,29 @@ pub(super) fn local_problem(
         ids: [0; MAX_NODES],
         len: 0,
     };
+    let origin = cfg.slave_origin(slave);
+    let about = |p: [f64; 2]| [p[0] - origin[0], p[1] - origin[1]];
+    let shift = |src: SegSource| match src {
+        SegSource::Rigid(piece, o) => SegSource::Rigid(piece, about(o)),
+        other => other,
+    };
     let slave_src = match slave {
         Slave::Node(n) => SlaveSource::Node(slots.slot(n)),
-        Slave::RigidPoint(_) | Slave::RigidVertex(..) => SlaveSource::Fixed(cfg.slave_pos(slave)),
+        Slave::RigidPoint(_) | Slave::RigidVertex(..) => SlaveSource::Fixed(cfg.slave_pos_about(slave, origin)),
     };
-    let seg_b = slots.source(cfg, pair, b);
+    let seg_b = shift(slots.source(cfg, pair, b));
     let closed = closed.map(|(stored, a, path, touch_gap)| Closed {
-        stored,
-        seg_a: slots.source(cfg, pair, a),
+        stored: StoredTraction {
+            slave: about(stored.slave),
+            ..stored
+        },
+        seg_a: shift(slots.source(cfg, pair, a)),
         path,
         touch_gap,
     });
     let mut x = [[0.0; 2]; MAX_NODES];
     for (i, &n) in slots.nodes().iter().enumerate() {
-        x[i] = cfg.node(n);
+        x[i] = cfg.node_about(n, origin);
     }
     let problem = PointProblem {
         law: pair.law,
@@ -127,8 +173,9 @@ pub(super) fn local_problem(
         slave: slave_src,
         seg_b,
         closed,
-        forced: None,
-        stick_held: false,
+        rule: Rule::Penalty,
+        kink: super::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     };
@@ -174,7 +221,7 @@ impl ContactSystem {
             .iter()
             .map(|p| vec![PointHistory::default(); p.slaves.len()])
             .collect();
-        let current = model
+        let current: Vec<Vec<PointNow>> = model
             .contacts
             .iter()
             .map(|p| vec![PointNow::default(); p.slaves.len()])
@@ -184,62 +231,32 @@ impl ContactSystem {
             .iter()
             .map(|p| vec![Pairing::default(); p.slaves.len()])
             .collect();
-        let frozen = model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect();
-        let stick_held = model.contacts.iter().map(|p| vec![false; p.slaves.len()]).collect();
+        let per_point =
+            |f: Forces| -> Vec<Vec<Forces>> { model.contacts.iter().map(|p| vec![f; p.slaves.len()]).collect() };
         let multipliers = (model.contacts.iter())
             .map(|p| vec![Multiplier::default(); p.slaves.len()])
             .collect();
         ContactSystem {
             committed,
-            current,
+            current: current.clone(),
             pairings,
             grids: vec![None; model.contacts.len()],
-            frozen,
-            stick_held,
-            verifying: false,
+            forces: per_point(Forces::default()),
+            forces_base: per_point(Forces::default()),
+            forces_step: per_point(Forces::default()),
+            lin: model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect(),
+            weights: model.contacts.iter().map(|p| augmented_weights(model, p)).collect(),
+            penalty_rule: false,
+            kink: Kink::Open,
+            warm: false,
+            complementarity2: 0.0,
+            current_base: current,
+            left: model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect(),
             multipliers,
             tunnelled: Vec::new(),
+            kink_points: Vec::with_capacity(model.contacts.iter().map(|p| p.slaves.len()).sum()),
+            rest_marked: false,
         }
-    }
-
-    /// Forget the current iterate (at the start of an attempt at an increment); the search
-    /// grids are rebuilt once for the new increment.
-    pub fn reset_current(&mut self) {
-        for pair in &mut self.current {
-            pair.iter_mut().for_each(|p| *p = PointNow::default());
-        }
-        self.grids.iter_mut().for_each(|g| *g = None);
-        self.unfreeze();
-    }
-
-    /// Release every frozen point.
-    pub fn unfreeze(&mut self) {
-        self.frozen.iter_mut().flatten().for_each(|f| *f = None);
-        self.stick_held.iter_mut().flatten().for_each(|f| *f = false);
-        self.verifying = false;
-    }
-
-    /// Start verifying the frozen points: states decided by the data again, segments kept
-    /// where the point still projects onto them or onto their extension by
-    /// [`pairing::HELD_EXTENSION`] (a point at a kink of the master has two admissible
-    /// closest points, or none; the held one is as admissible as the walk's).
-    pub fn verify_frozen(&mut self) {
-        self.verifying = true;
-    }
-
-    /// Whether the contact forces of the current iterate derive from a potential: every
-    /// closed point sticks or is frictionless (a slipping frictional point is not
-    /// conservative, and the slope of an energy along a correction means nothing there).
-    pub fn conservative(&self, model: &Model) -> bool {
-        self.current.iter().zip(&model.contacts).all(|(pts, pair)| {
-            pair.law.mu == 0.0 || pts.iter().all(|p| p.eval.is_none_or(|e| e.state != ContactState::Slip))
-        })
-    }
-
-    /// Number of frozen points (and points whose stick is held).
-    pub fn frozen_count(&self) -> usize {
-        let held = self.frozen.iter().flatten().zip(self.stick_held.iter().flatten());
-        held.filter(|(f, s)| f.is_some() || **s).count()
     }
 
     /// `(pair, slave)` of the `flat`-th point in [`Self::signature`] order.
@@ -252,30 +269,6 @@ impl ContactSystem {
             k -= pts.len();
         }
         panic!("point {flat} out of range")
-    }
-
-    /// Hold the `flat`-th point at `frozen` for the rest of the increment.
-    pub fn freeze(&mut self, flat: usize, frozen: Decision) {
-        let (ip, is) = self.point_index(flat);
-        self.frozen[ip][is] = Some(frozen);
-    }
-
-    /// Number of points whose stick is held.
-    pub fn stick_held_count(&self) -> usize {
-        self.stick_held.iter().flatten().filter(|s| **s).count()
-    }
-
-    /// Hold the `flat`-th point in stick (see [`super::point::PointProblem::stick_held`]).
-    pub fn hold_stick(&mut self, flat: usize) {
-        let (ip, is) = self.point_index(flat);
-        self.stick_held[ip][is] = true;
-    }
-
-    /// Release the `flat`-th point (see [`Self::freeze`], [`Self::hold_stick`]).
-    pub fn release(&mut self, flat: usize) {
-        let (ip, is) = self.point_index(flat);
-        self.frozen[ip][is] = None;
-        self.stick_held[ip][is] = false;
     }
 
     /// `(state, segment)` of every point at the current iterate, written into `out`
@@ -327,8 +320,15 @@ impl ContactSystem {
                 };
                 // an augmented point is closed while `λ_N − ε_N ζ > 0`: the rules see that gap
                 let shift = self.multipliers[ip][is].normal / pair.law.eps_n;
-                self.pairings[ip][is] = pairing::locate(cfg, pair, slave, start, closed_before, grid, shift);
-                if paired_before && self.pairings[ip][is].beyond_reach_inside {
+                let mut paired = pairing::locate(cfg, pair, slave, start, closed_before, grid, shift);
+                if let (true, Some(before), Some(after)) = (closed_before, now.segment, paired.segment) {
+                    if after != before {
+                        let left = &mut self.left[ip][is];
+                        paired = crossing_back(cfg, pair, slave, left, (before, after)).unwrap_or(paired);
+                    }
+                }
+                self.pairings[ip][is] = paired;
+                if paired_before && paired.beyond_reach_inside {
                     self.tunnelled.push((ip, is));
                 }
             }
@@ -337,20 +337,18 @@ impl ContactSystem {
         pairing::exclude_owned_vertices(cfg, &mut self.pairings, &|ip, is| {
             (committed[ip][is].segment, committed[ip][is].closed)
         });
-        for (ip, pair) in cfg.model.contacts.iter().enumerate() {
-            for (is, &slave) in pair.slaves.iter().enumerate() {
-                if let Some(f) = self.frozen[ip][is] {
-                    let held = pairing::held(cfg, pair, slave, f.segment);
-                    let admissible = held.pinned
-                        || held
-                            .located
-                            .is_some_and(|l| l.xi.abs() <= 1.0 + pairing::HELD_EXTENSION);
-                    if !self.verifying || admissible {
-                        self.pairings[ip][is] = held;
-                    }
-                }
-            }
-        }
+    }
+
+    /// Points closed at the current iterate whose projection lies on an extension of their
+    /// segment (`|ξ| > 1` beyond round-off; see [`Self::crossing_back`]).
+    pub fn on_extensions(&self) -> usize {
+        let beyond =
+            |e: &PointEval<f64>| e.state != ContactState::Open && e.proj.xi.abs() > 1.0 + super::search::XI_TOL;
+        self.current
+            .iter()
+            .flatten()
+            .filter(|p| p.eval.as_ref().is_some_and(beyond))
+            .count()
     }
 
     /// The points that, at the last pairing, were found deeper inside their master than the
@@ -362,22 +360,35 @@ impl ContactSystem {
         &self.tunnelled
     }
 
-    /// Pair, then evaluate every paired slave point; for each closed point call
-    /// `assemble(nodes, r, k)` with its local residual (`2·nodes.len()`) and tangent.
+    /// Pair, then evaluate every paired slave point, its state decided by its rule (the
+    /// augmented forces, or the penalty rule: [`Self::use_penalty_rule`]); hand each point
+    /// that carries a force, penalty or unknown, to `assemble` (see [`LocalSink`]).
     pub fn evaluate(&mut self, cfg: &Config, assemble: &mut LocalSink) {
         self.pair(cfg);
         let mut r = [0.0; 2 * MAX_NODES];
+        let mut r_eq = [0.0; 2 * MAX_NODES];
         let mut k = [0.0; 4 * MAX_NODES * MAX_NODES];
+        self.complementarity2 = 0.0;
+        let mut flat = 0;
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
+            let (rho_n, rho_t) = self.weights[ip];
             for (is, &slave) in pair.slaves.iter().enumerate() {
+                let rests = self.rest_marked && self.kink_points[flat];
+                flat += 1;
                 let hist = self.committed[ip][is];
                 let paired = self.pairings[ip][is];
+                let forces = self.forces[ip][is];
                 let now = &mut self.current[ip][is];
                 *now = PointNow {
                     segment: paired.segment,
                     ..PointNow::default()
                 };
-                let Some(loc) = paired.located else { continue };
+                self.lin[ip][is] = None;
+                let Some(loc) = paired.located else {
+                    // out of reach: no force can act; its unknowns go to zero
+                    self.complementarity2 += forces.normal.powi(2) + forces.tangential.powi(2);
+                    continue;
+                };
                 let touch = !hist.closed && hist.gap.is_finite() && pair.law.mu > 0.0;
                 let closed = match (hist.closed || touch, hist.segment) {
                     (true, Some(a)) => {
@@ -387,19 +398,40 @@ impl ContactSystem {
                     _ => None,
                 };
                 let (mut problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
-                if !self.verifying {
-                    problem.forced = self.frozen[ip][is].map(|f| f.state);
-                    problem.stick_held = self.stick_held[ip][is];
-                }
+                problem.rule = match self.penalty_rule {
+                    true => Rule::Penalty,
+                    false => Rule::AlartCurnier { forces, rho_n, rho_t },
+                };
+                problem.kink = if rests { Kink::Resting } else { self.kink };
+                // the first iterate's active set is the converged one where there is one
+                problem.warm = self.warm && hist.closed;
                 problem.at_vertex = paired.pinned.then_some(loc.xi.signum());
                 if matches!(pair.enforcement, Enforcement::Augmented { .. }) {
                     problem.multiplier = Some(self.multipliers[ip][is]);
                 }
                 let nd = 2 * slots.len;
-                let e = problem.residual_tangent(&mut r[..nd], &mut k[..nd * nd]);
+                let mut lin = Linearization::default();
+                let mut e = problem.local(&mut r[..nd], &mut r_eq[..nd], &mut k[..nd * nd], &mut lin);
+                // the kernel computed about the slave's origin: the contact point in the
+                // model's coordinates again
+                let origin = cfg.slave_origin(slave);
+                e.proj.rho = [e.proj.rho[0] + origin[0], e.proj.rho[1] + origin[1]];
                 now.eval = Some(e);
-                if e.state != ContactState::Open && nd > 0 {
-                    assemble(slots.nodes(), &r[..nd], &k[..nd * nd], problem.fixed_coordinate_scale());
+                self.complementarity2 += e.complementarity[0].powi(2) + e.complementarity[1].powi(2);
+                let carries = e.state != ContactState::Open || forces != Forces::default();
+                if carries && nd > 0 {
+                    // the penalty force's round-off (ε ε_mach |x|) enters the residual Newton
+                    // is judged by through the complementarity residual, weighted by ρ
+                    let rho = if self.penalty_rule { 1.0 } else { rho_n.max(rho_t) };
+                    let scale = problem.fixed_coordinate_scale();
+                    let weights: [f64; 2 * MAX_NODES] = std::array::from_fn(|j| match j < nd {
+                        true => rho * problem.x[j / 2][j % 2].abs().max(scale),
+                        false => 0.0,
+                    });
+                    assemble(slots.nodes(), &r[..nd], &r_eq[..nd], &k[..nd * nd], &weights[..nd]);
+                }
+                if e.state != ContactState::Open {
+                    self.lin[ip][is] = Some((slots, lin));
                 }
             }
         }
@@ -414,7 +446,7 @@ impl ContactSystem {
     /// and the tangent is singular); and a point driven through its master in the first
     /// increment is found on the far side, not lost (see [`Self::tunnelled`]).
     pub fn start_from_initial_configuration(&mut self, cfg: &Config) {
-        self.evaluate(cfg, &mut |_, _, _, _| {});
+        self.evaluate(cfg, &mut |_, _, _, _, _| {});
         self.commit(cfg);
         self.reset_current();
         self.tunnelled.clear();
@@ -445,6 +477,7 @@ impl ContactSystem {
                         h.gap = f64::NAN;
                         h.xi = e.proj.xi;
                         h.t1 = e.t1;
+                        h.normal = e.normal_force;
                         h.a11 = e.proj.a11;
                         h.store_spatial(cfg.slave_pos(pair.slaves[is]), &e);
                     }
@@ -454,6 +487,7 @@ impl ContactSystem {
                         h.closed = false;
                         h.stuck = false;
                         h.t1 = 0.0;
+                        h.normal = 0.0;
                         h.xi = e.proj.xi;
                         h.a11 = e.proj.a11;
                         h.gap = if super::point::touching(e.proj.gap, e.proj.a11) {
@@ -467,6 +501,7 @@ impl ContactSystem {
                         h.closed = false;
                         h.stuck = false;
                         h.t1 = 0.0;
+                        h.normal = 0.0;
                         h.gap = f64::NAN;
                     }
                 }
@@ -497,4 +532,57 @@ impl ContactSystem {
         }
         out
     }
+}
+
+/// The weights `ρ = min(1, c/ε)` of a pair's augmented forces (see [`super::decision`]),
+/// with `c` the smaller plane-strain modulus of the deformable bodies it joins: the
+/// stiffness of the model's own scale against which a penalty is stiff or soft.
+fn augmented_weights(model: &Model, pair: &ContactPair) -> (f64, f64) {
+    let body_of =
+        |node: usize| (model.bodies.iter()).find(|b| (b.first_node..b.first_node + b.node_count).contains(&node));
+    let mut c = f64::INFINITY;
+    for s in &pair.slaves {
+        if let Slave::Node(n) = s {
+            if let Some(b) = body_of(*n) {
+                c = c.min(b.material.plane_strain_modulus());
+            }
+        }
+    }
+    if let Master::Face { body, .. } = pair.master {
+        c = c.min(model.bodies[body].material.plane_strain_modulus());
+    }
+    if !c.is_finite() {
+        return (1.0, 1.0);
+    }
+    super::decision::weights(c, pair.law.eps_n, pair.law.eps_t)
+}
+
+/// A closed point that Newton moves from segment `before` back to `after`, the segment
+/// it left at its last change in this attempt, keeps `before` while its projection stays
+/// on it or its extension by [`pairing::HELD_EXTENSION`] (returns that pairing; `None`
+/// when it moves on, and the change is noted). At a node of a faceted master the contact
+/// normal jumps: the residual is no function of the positions there, and a point whose
+/// equilibrium lies just past the node on either segment is carried back and forth
+/// across it by every correction. On the extended segment the point has an equilibrium,
+/// as in node-to-segment codes (Wriggers, Computational Contact Mechanics (2006) §9.1);
+/// a converged point on an extension is reported ([`ContactSystem::on_extensions`]).
+fn crossing_back(
+    cfg: &Config,
+    pair: &ContactPair,
+    slave: Slave,
+    left: &mut Option<usize>,
+    (before, after): (usize, usize),
+) -> Option<Pairing> {
+    if *left == Some(after) {
+        let held = pairing::held(cfg, pair, slave, Some(before));
+        if held.pinned
+            || held
+                .located
+                .is_some_and(|l| l.xi.abs() <= 1.0 + pairing::HELD_EXTENSION)
+        {
+            return Some(held);
+        }
+    }
+    *left = Some(before);
+    None
 }

@@ -89,7 +89,7 @@ pub struct MonitorRecord {
 }
 
 /// A converged increment.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 pub struct IncrementRecord {
     pub increment: usize,
     #[serde(with = "Real")]
@@ -115,6 +115,23 @@ pub struct IncrementRecord {
     /// Sum of all reaction forces (x, y).
     #[serde(with = "Real2")]
     pub reaction_total: [f64; 2],
+    /// Which convergence test accepted the increment: `residual` (‖R‖ ≤ tol · F_ref and the
+    /// energy test), `round-off` (‖R‖ at the assembled residual's round-off floor) or
+    /// `start` (the first iterate met the residual test); empty in older recordings.
+    #[serde(default)]
+    pub accepted_by: String,
+    /// Corrections of the converged attempt whose line search found no decrease of the
+    /// merit function (the shortest step tried was taken).
+    #[serde(default)]
+    pub line_search_failures: usize,
+    /// Closed contact points whose converged projection lies on an extension of their
+    /// segment (kept there against a crossing back and forth at a node of the master).
+    #[serde(default)]
+    pub on_extension: usize,
+    /// Newton iterations of the converged attempt that reached an active set not met before
+    /// in it (a moving contact front); each extended the iteration limit by one.
+    #[serde(default)]
+    pub front_iterations: usize,
 }
 
 impl IncrementRecord {

@@ -92,7 +92,24 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     (line, col)
 }
 
+/// Solver keys of earlier versions, and why they are gone.
+const REMOVED_KEYS: [(&str, &str); 4] = [
+    ("line_search", "the line search on the merit function is always on"),
+    ("line_search_rule", "the line search is the merit function's, always on"),
+    (
+        "freeze_after",
+        "no point is frozen: the contact states are the complementarity functions' (docs/methods.md)",
+    ),
+    (
+        "max_settling_iterations",
+        "no settling budget: a contact front settles within max_iterations (docs/methods.md)",
+    ),
+];
+
 fn hint_for(message: &str) -> String {
+    if let Some((key, why)) = REMOVED_KEYS.iter().find(|(k, _)| message.contains(&format!("`{k}`"))) {
+        return format!("remove the key `{key}`: {why}");
+    }
     if message.contains("unknown field") {
         "remove or correct the key; the accepted keys are listed above (schemas/scene.schema.json documents them)"
             .into()

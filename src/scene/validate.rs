@@ -321,15 +321,6 @@ fn stepping(c: &Check, s: &SceneFile) -> R {
             "give e.g. 25",
         ));
     }
-    if n.max_settling_iterations > 100_000 {
-        return Err(c.fail(
-            &q("max_settling_iterations"),
-            "solver.max_settling_iterations",
-            n.max_settling_iterations,
-            "must be at most 100000",
-            "give e.g. 400 (0: no iterations beyond max_iterations)",
-        ));
-    }
     c.non_negative(&q("residual_tol"), "solver.residual_tol", n.residual_tol)?;
     c.non_negative(&q("residual_abs"), "solver.residual_abs", n.residual_abs)?;
     c.non_negative(&q("energy_tol"), "solver.energy_tol", n.energy_tol)?;

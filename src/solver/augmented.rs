@@ -46,7 +46,6 @@ pub fn solve_augmented(
         }
         state.contact.augment(model, true);
         conv.augmentations += 1;
-        state.contact.unfreeze();
         let offset = conv.iterations;
         let mut renumbered = |mut r: IterationRecord| {
             r.iteration += offset;
@@ -55,13 +54,14 @@ pub fn solve_augmented(
         let again = IncrementTarget {
             reference_floor: target.reference_floor.max(conv.reference),
             predicted: false,
-            shorten_predicted: false,
             ..target
         };
         let next = solve_increment(model, settings, asm, state, again, &mut renumbered, ws)?;
         conv.iterations += next.iterations;
         conv.residuals.extend(next.residuals);
         conv.reference = conv.reference.max(next.reference);
-        conv.frozen += next.frozen;
+        conv.line_search_failures += next.line_search_failures;
+        conv.front_iterations += next.front_iterations;
+        conv.accepted_by = next.accepted_by;
     }
 }

@@ -1,29 +1,59 @@
-//! Newton–Raphson for one load increment, with residual and energy-norm criteria and an
-//! optional backtracking line search.
+//! Newton's method for one load increment: a semismooth Newton method on the displacements
+//! and the contact force unknowns (condensed point by point, see
+//! [`crate::contact::decision`]), globalised by a line search on the merit function of the
+//! whole system ([`super::line_search`]), with a convergence test that depends neither on
+//! the iterate nor on where the model sits or in what units it is written.
+//!
+//! One iteration: assemble → test → solve → search along the correction.
 
-use super::active_set::{hold_first_correction, touching_pushed_in, ActiveSetWatch};
-use super::line_search::{residual_backtracking, slope_search};
+use super::active_set::ActiveSetWatch;
 use super::state::TrialState;
 use crate::assembly::Assembler;
+use crate::contact::decision::Kink;
 use crate::model::Model;
 use crate::record::IterationRecord;
-use crate::settings::{LineSearch, NewtonSettings};
+use crate::settings::NewtonSettings;
 
 pub use super::newton_failure::NewtonFailure;
 
-#[path = "newton_guards.rs"]
-mod guards;
+/// Which test accepted an increment (recorded with it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Acceptance {
+    /// `‖R‖ ≤ tol · F_ref` and the energy norm of the last correction below `energy_tol`
+    /// times the first's.
+    Residual,
+    /// `‖R‖` at the round-off floor of the assembled residual.
+    RoundOff,
+    /// The first iterate already met the residual test (no correction made).
+    Start,
+}
+
+impl Acceptance {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Acceptance::Residual => "residual",
+            Acceptance::RoundOff => "round-off",
+            Acceptance::Start => "start",
+        }
+    }
+}
 
 /// Outcome of a converged increment (`residuals`: `‖R‖` at each iterate).
 #[derive(Debug, Clone)]
 pub struct Converged {
     pub iterations: usize,
     pub residuals: Vec<f64>,
+    /// The force scale of the converged state ([`force_scale`]).
     pub reference: f64,
-    /// Points frozen during the increment and verified at its end.
-    pub frozen: usize,
     /// Multiplier updates of augmented-Lagrangian pairs (each one more solve).
     pub augmentations: usize,
+    pub accepted_by: Acceptance,
+    /// Corrections whose line search found no step that decreased the merit function (the
+    /// shortest step tried was taken).
+    pub line_search_failures: usize,
+    /// Iterations that reached a new active set and so extended the iteration limit
+    /// ([`Iterate::count_front`]).
+    pub front_iterations: usize,
 }
 
 /// Assemble residual (and tangent if `with_tangent`) at `state`, refusing a state in which
@@ -55,11 +85,12 @@ pub(super) fn inadmissible(f: &NewtonFailure) -> bool {
     matches!(f, NewtonFailure::Element(_) | NewtonFailure::Tunnelled { .. })
 }
 
-/// Norm of the reactions (internal forces at prescribed DOFs) and of the applied loads.
-fn reference_force(model: &Model, asm: &Assembler, t: f64) -> f64 {
+/// The force scale of a state: the norm of the reactions (internal forces at prescribed
+/// DOFs), of the applied loads and of the contact forces.
+pub fn force_scale(model: &Model, asm: &Assembler, contact: &crate::contact::system::ContactSystem, t: f64) -> f64 {
     let reac: f64 = asm.dofs.prescribed.iter().map(|&d| asm.r_full[d].powi(2)).sum();
     let load: f64 = model.loads.iter().map(|l| l.ramp.at(t).powi(2)).sum();
-    (reac + load).sqrt()
+    (reac + load + contact.force_norm().powi(2)).sqrt()
 }
 
 /// Buffers and diagnostics of one attempt, reused across increments.
@@ -67,57 +98,65 @@ fn reference_force(model: &Model, asm: &Assembler, t: f64) -> f64 {
 pub struct Workspace {
     pub(super) r: Vec<f64>,
     pub(super) du: Vec<f64>,
-    frozen: Vec<bool>,
-    /// Points held (closed, or in stick) for the first correction of an attempt.
-    held: Vec<usize>,
     /// `‖R‖` at each iterate of the last attempt.
     pub residuals: Vec<f64>,
+    /// The merit function at each iterate of the last attempt.
+    pub(super) merits: Vec<f64>,
     /// The active-set history of the last attempt.
     pub watch: ActiveSetWatch,
-    /// The iterate before the last correction (displacements and enhanced-strain
-    /// parameters), to shorten a correction that inverts an element.
-    u_before: Vec<f64>,
-    alphas_before: Vec<[f64; 4]>,
-    /// Per point, the direction of its slip at the last iterate (0: not slipping).
-    slip_sign: Vec<i8>,
+    /// The iterate a correction starts from (displacements and enhanced-strain parameters).
+    pub(super) u_before: Vec<f64>,
+    pub(super) alphas_before: Vec<[f64; 4]>,
+    /// Line searches of the attempt that found no decrease.
+    pub(super) line_search_failures: usize,
+    /// Iterations of the attempt that reached an active set not met before in it (a moving
+    /// contact front: [`Iterate::count_front`]); each extends the iteration limit by one.
+    pub(super) front_iterations: usize,
+    /// The globalisation's saved iterate ([`super::line_search`]).
+    pub(super) watchdog: super::line_search::Watchdog,
 }
-
-/// How many times a Newton correction is halved when its end inverts an element (or an
-/// element's enhanced strains find no equilibrium there) before the attempt fails.
-pub const MAX_INADMISSIBLE_HALVINGS: usize = 12;
 
 /// Which increment is solved, to what time, and from what start.
 #[derive(Debug, Clone, Copy)]
 pub struct IncrementTarget {
     /// The pseudo-time the increment ends at.
     pub t: f64,
-    /// The largest reference force of the run so far (`F_ref` never falls below it).
+    /// The largest force scale of the converged increments so far ([`force_scale`]):
+    /// `F_ref` never falls below it.
     pub reference_floor: f64,
     pub increment: usize,
     pub attempt: usize,
     /// The start is extrapolated from the last converged increments (secant predictor).
     pub predicted: bool,
-    /// From a predicted start, shorten inadmissible corrections like any other start
-    /// instead of giving the prediction up at the first one (see `Iterate::shorten`).
-    pub shorten_predicted: bool,
+}
+
+/// The norms an attempt is judged by.
+#[derive(Debug, Clone, Copy, Default)]
+struct Norms {
+    /// `‖R‖` of the first iterate and of the current one; the reference force and the
+    /// residual tolerance (fixed at the first iterate: an iterate cannot loosen its own test).
+    r0: f64,
+    rn: f64,
+    fref: f64,
+    tol: f64,
+    /// Energy norms `|Δu·R|` of the first and the last correction.
+    e0: f64,
+    e_last: f64,
 }
 
 /// Iterate to equilibrium at `target.t` starting from `state` (prescribed DOFs are set here).
 /// `on_iteration` receives one record per correction; failures leave `state` dirty (the
-/// caller restores the last converged one). `target.predicted`: `state` is an extrapolated
-/// start; points it finds open that were closed at the last converged increment are held
-/// closed for the first correction ([`hold_first_correction`]; the first residual recorded
-/// is then that of the held state).
+/// caller restores the last converged one).
 ///
-/// Converged when `‖R‖ ≤ max(tol · F_ref, residual_abs, ε_round)` and the energy norm of the
-/// last correction fell below `energy_tol` times that of the first, where `F_ref` is the
-/// norm of reactions and loads (never below the largest converged one of the run) and
-/// `ε_round = 1e-13 ‖Σ|r_e|‖` is the round-off level of the assembled residual (the norm
-/// of the summed absolute element and contact contributions): refining the mesh or the
-/// step never asks for a residual below what the arithmetic can resolve.
-///
-/// Each iteration is the textbook sequence of named steps: assemble, test convergence
-/// (verifying frozen points), correct, search along the correction, watch the active set.
+/// The residual judged is that of the mixed system, `‖R‖ = √φ` with `φ` the merit
+/// function ([`Assembler::merit`]): equilibrium with the contact force unknowns, and their
+/// complementarity residuals — the penalty law to within `tol · F_ref / c` in the gap, `c`
+/// the bodies' stiffness, whatever `ε`. Converged when `‖R‖ ≤ max(tol · F_ref,
+/// residual_abs)` and the energy norm of the last correction fell below `energy_tol` times
+/// that of the first, or when `‖R‖` is at the round-off floor `ε_round` of the assembled
+/// residual ([`Assembler::roundoff`]); which test accepted is recorded ([`Acceptance`]).
+/// `F_ref` is fixed for the attempt: the largest force scale ([`force_scale`]) of the run's
+/// converged increments, or, before there is one, of the attempt's first iterate.
 pub fn solve_increment(
     model: &Model,
     settings: &NewtonSettings,
@@ -129,25 +168,23 @@ pub fn solve_increment(
 ) -> Result<Converged, NewtonFailure> {
     let mut it = Iterate::start(model, settings, asm, state, target, ws)?;
     for k in 0.. {
-        it.assemble_if_needed()?;
-        it.hold_reversing_slip()?;
         if let Some(converged) = it.test_convergence(k)? {
             return Ok(converged);
         }
-        if k >= it.budget() {
+        if k >= settings.max_iterations + it.ws.front_iterations {
             break;
         }
-        let (energy, step, reuse) = it.correct(k)?;
-        let changes = it.watch_active_set(k, reuse);
-        it.count_settling(changes);
+        let (energy, step) = it.correct()?;
+        let changes = it.ws.watch.observe(&it.state.contact, k + 1);
+        it.count_front(changes);
         let keep_going = record(IterationRecord {
             increment: target.increment,
             attempt: target.attempt,
             t: target.t,
             iteration: k + 1,
-            residual: it.rn,
+            residual: it.norms.rn,
             energy,
-            reference: it.fref,
+            reference: it.norms.fref,
             line_search: step,
             active_set_changes: changes,
         });
@@ -159,46 +196,19 @@ pub fn solve_increment(
 }
 
 /// The state of Newton's iteration within one attempt at an increment.
-struct Iterate<'a> {
-    model: &'a Model,
+pub(super) struct Iterate<'a> {
+    pub(super) model: &'a Model,
     settings: &'a NewtonSettings,
-    asm: &'a mut Assembler,
-    state: &'a mut TrialState,
-    ws: &'a mut Workspace,
-    t: f64,
-    reference_floor: f64,
-    /// Energy norm of the first correction (0 until made, and again after a verification).
-    e0: f64,
-    /// Energy norm of the last correction.
-    e_last: f64,
-    /// `‖R‖` of the first iterate, of the current one, its reference force and tolerance.
-    r0: f64,
-    rn: f64,
-    fref: f64,
-    tol: f64,
-    /// Points that keep chattering are frozen (until a verification fails once).
-    freezing: bool,
-    verified_once: bool,
-    /// What the assembler holds at the current iterate.
-    assembled: Assembled,
-    /// Iterations that left the active set in a pattern not met before in the attempt while
-    /// the residual still reached new lows (see [`NewtonSettings::max_settling_iterations`]).
-    settling: usize,
-    /// The halving of the last correction when its end turned out inadmissible.
-    shortened: f64,
-    /// A predicted start is given up at its first inadmissible correction.
-    abandon_bad_prediction: bool,
-    /// First residual of the current run of free iterations (after a failed verification).
-    settling_from: usize,
-    /// The attempt starts from an extrapolated state: it gets no settling iterations (when
-    /// it does not converge within `max_iterations` the increment is retried from the
-    /// converged state, which settles from where it truly is).
-    predicted: bool,
+    pub(super) asm: &'a mut Assembler,
+    pub(super) state: &'a mut TrialState,
+    pub(super) ws: &'a mut Workspace,
+    pub(super) t: f64,
+    norms: Norms,
 }
 
 impl<'a> Iterate<'a> {
-    /// Prescribe the DOFs, size the buffers, assemble the first iterate and hold the points
-    /// that the first correction should see closed or sticking.
+    /// Prescribe the DOFs, size the buffers, assemble the first iterate and fix the
+    /// reference force.
     fn start(
         model: &'a Model,
         settings: &'a NewtonSettings,
@@ -208,236 +218,210 @@ impl<'a> Iterate<'a> {
         ws: &'a mut Workspace,
     ) -> Result<Self, NewtonFailure> {
         ws.residuals.clear();
-        ws.held.clear();
-        ws.u_before.clear();
-        ws.slip_sign.clear();
+        ws.merits.clear();
+        ws.line_search_failures = 0;
+        ws.front_iterations = 0;
+        ws.watchdog.reset();
         for p in &model.prescribed {
             state.u[p.dof] = p.ramp.at(target.t);
         }
         let n = asm.dofs.n_free;
         ws.r.resize(n, 0.0);
         ws.du.resize(n, 0.0);
-        let t = target.t;
-        assemble_at(model, asm, state, t, true)?;
-        let retry = target.attempt > 0 && !target.predicted;
-        let pushed_in = touching_pushed_in(model, asm, state, t, ws)?;
-        let held = hold_first_correction(
-            &mut state.contact,
-            model,
-            (target.predicted, retry),
-            &pushed_in,
-            &mut ws.held,
-        );
-        if held > 0 {
-            assemble_at(model, asm, state, t, true)?;
-        }
+        // the first correction of an attempt starts from the converged active set: the
+        // points decide by their force unknowns alone (see `contact::decision`)
+        state.contact.set_warm_start(true);
+        assemble_at(model, asm, state, target.t, true)?;
+        state.contact.set_warm_start(false);
         ws.watch.start(&state.contact);
-        ws.frozen.clear();
-        ws.frozen.resize(state.contact.signature_len(), false);
+        let fref = match target.reference_floor {
+            f if f > 0.0 => f,
+            _ => force_scale(model, asm, &state.contact, target.t).max(asm.merit(&state.contact).sqrt()),
+        };
+        let norms = Norms {
+            fref,
+            tol: (settings.residual_tol * fref).max(settings.residual_abs),
+            ..Norms::default()
+        };
         Ok(Iterate {
             model,
             settings,
             asm,
             state,
             ws,
-            t,
-            reference_floor: target.reference_floor,
-            e0: 0.0,
-            e_last: f64::INFINITY,
-            r0: 0.0,
-            rn: 0.0,
-            fref: 0.0,
-            tol: 0.0,
-            freezing: settings.freeze_after > 0,
-            verified_once: false,
-            assembled: Assembled::Full,
-            settling: 0,
-            shortened: 1.0,
-            abandon_bad_prediction: target.predicted && !target.shorten_predicted,
-            settling_from: 0,
-            predicted: target.predicted,
+            t: target.t,
+            norms,
         })
     }
 
-    fn assemble(&mut self, with_tangent: bool) -> Result<(), NewtonFailure> {
+    pub(super) fn assemble(&mut self, with_tangent: bool) -> Result<(), NewtonFailure> {
         assemble_at(self.model, self.asm, self.state, self.t, with_tangent)
     }
 
-    /// Residual and tangent at the iterate, unless a line search's full-step trial left them.
-    /// An iterate just reached by a correction that inverts an element is pulled back
-    /// along the correction (see [`Self::shorten`]).
-    fn assemble_if_needed(&mut self) -> Result<(), NewtonFailure> {
-        if self.assembled == Assembled::Nothing {
-            loop {
-                match self.assemble(true) {
-                    Ok(()) => break,
-                    // (no correction to shorten when the iterate was not reached by one)
-                    Err(f) if inadmissible(&f) && self.ws.u_before.len() == self.state.u.len() => self.shorten(f)?,
-                    Err(e) => return Err(e),
-                }
-            }
-            self.assembled = Assembled::Full;
-        }
-        Ok(())
-    }
-
-    /// The residual and energy tests at iterate `k` (a converged iterate with frozen points
-    /// is verified with them released), then the divergence test.
+    /// The residual and energy tests at iterate `k`, then the divergence test. On
+    /// convergence the contact points take their force unknowns as their forces
+    /// ([`crate::contact::system::ContactSystem::adopt_forces`]).
     fn test_convergence(&mut self, k: usize) -> Result<Option<Converged>, NewtonFailure> {
         self.asm.free_residual(&mut self.ws.r);
-        self.rn = norm(&self.ws.r);
-        if !self.rn.is_finite() {
+        let merit = self.asm.merit(&self.state.contact);
+        let rn = merit.sqrt();
+        if !rn.is_finite() {
             return Err(NewtonFailure::NonFinite);
         }
-        self.ws.residuals.push(self.rn);
-        self.fref = reference_force(self.model, self.asm, self.t).max(self.reference_floor);
+        self.norms.rn = rn;
+        self.ws.residuals.push(rn);
+        self.ws.merits.push(merit);
         if k == 0 {
-            self.r0 = self.rn;
+            self.norms.r0 = rn;
         }
-        let floor = self.settings.residual_abs.max(self.asm.roundoff());
-        self.tol = (self.settings.residual_tol * self.fref).max(floor);
-        let res_ok = self.rn <= self.tol;
-        let energy_ok = k > 0 && self.e_last <= self.settings.energy_tol * self.e0.max(f64::MIN_POSITIVE);
-        if res_ok && (energy_ok || k == 0 || self.rn <= floor) {
-            if let Some(converged) = self.verify_frozen(k)? {
-                return Ok(Some(converged));
-            }
-        }
-        if self.rn > self.settings.divergence_factor * self.r0.max(self.fref) {
-            return Err(NewtonFailure::Diverged { residual: self.rn });
-        }
-        Ok(None)
-    }
-
-    /// A converged iterate: done when no point is frozen; otherwise release the frozen
-    /// states (keeping admissible segments) and check them. Points held for the first
-    /// correction of a predicted start (only ever at k = 0) are checked alike but are not
-    /// reported as frozen (they were not chattering). A failed check goes on with every
-    /// point free to choose (no more freezing); a second one fails the attempt.
-    fn verify_frozen(&mut self, k: usize) -> Result<Option<Converged>, NewtonFailure> {
-        let frozen = self.state.contact.frozen_count();
-        let converged = |ws: &Workspace, frozen: usize, fref: f64| Converged {
-            iterations: k,
-            residuals: ws.residuals.clone(),
-            reference: fref,
-            frozen,
-            augmentations: 0,
+        let floor = self.asm.roundoff();
+        let energy_ok = k > 0 && self.norms.e_last <= self.settings.energy_tol * self.norms.e0.max(f64::MIN_POSITIVE);
+        let accepted = match (rn <= floor, rn <= self.norms.tol.max(floor)) {
+            (true, _) => Some(Acceptance::RoundOff),
+            (false, true) if k == 0 => Some(Acceptance::Start),
+            (false, true) if energy_ok => Some(Acceptance::Residual),
+            _ => None,
         };
-        if frozen == 0 {
-            let chattered = self.ws.frozen.iter().filter(|f| **f).count();
-            return Ok(Some(converged(self.ws, chattered, self.fref)));
+        if let Some(by) = accepted {
+            self.state.contact.adopt_forces();
+            return Ok(Some(self.converged(k, by)));
         }
-        let chattering = frozen - self.ws.held.len();
-        self.state.contact.verify_frozen();
-        self.assemble(true)?;
-        self.assembled = Assembled::Full;
-        self.asm.free_residual(&mut self.ws.r);
-        let rv = norm(&self.ws.r);
-        if rv <= self.tol {
-            self.ws.residuals.push(rv);
-            return Ok(Some(converged(self.ws, chattering, self.fref)));
+        if rn > self.settings.divergence_factor * self.norms.r0.max(self.norms.fref) {
+            return Err(NewtonFailure::Diverged { residual: rn });
         }
-        if self.verified_once {
-            return Err(NewtonFailure::FrozenNotVerified { residual: rv });
-        }
-        self.state.contact.unfreeze();
-        self.settling_from = self.ws.residuals.len();
-        self.verified_once = true;
-        self.freezing = false;
-        self.e0 = 0.0;
         Ok(None)
     }
 
-    /// Solve for the correction `Δu = −K⁻¹R`, take it, free the held points, and search
-    /// along it. Returns the correction's energy norm `|Δu·R|`, the step taken and whether
-    /// the assembler holds the accepted trial's assembly (see [`residual_backtracking`]).
-    fn correct(&mut self, k: usize) -> Result<(f64, f64, Option<bool>), NewtonFailure> {
-        if self.assembled == Assembled::Residual {
-            // the residual-only trial did not converge after all: its tangent now
+    fn converged(&self, k: usize, accepted_by: Acceptance) -> Converged {
+        Converged {
+            iterations: k,
+            residuals: self.ws.residuals.clone(),
+            reference: force_scale(self.model, self.asm, &self.state.contact, self.t),
+            augmentations: 0,
+            accepted_by,
+            line_search_failures: self.ws.line_search_failures,
+            front_iterations: self.ws.front_iterations,
+        }
+    }
+
+    /// Count an iteration that changed the active set to one not met before in the attempt
+    /// (at most one per contact point). A semismooth Newton method on a contact problem
+    /// terminates once its active set stops changing, and its sets do not repeat while it
+    /// converges (Hintermüller, Ito & Kunisch, SIAM J Optim 13 (2003) 865–888, Thm 3.1 and
+    /// §4; Hüeber & Wohlmuth, CMAME 194 (2005) 3147–3166, §5): a lift-off or slip front
+    /// crossing many points moves a few points per iteration — the tension region of a
+    /// body held by stiff contact springs is a few springs long — and each new set is
+    /// progress, not failure. Only the iterations that repeat a set (a cycle) or leave it
+    /// unchanged count against `max_iterations`; the extension is recorded per increment
+    /// (`front_iterations`).
+    fn count_front(&mut self, changes: usize) {
+        let points = self.state.contact.signature_len();
+        let new = self.ws.watch.new_pattern();
+        if changes > 0 && new && self.ws.front_iterations < points {
+            self.ws.front_iterations += 1;
+        }
+        if changes > 0 && !new {
+            self.ws.watchdog.go_monotone();
+        }
+    }
+
+    /// Solve for the correction `Δu = −K⁻¹R`, linearise the force unknowns along it, and
+    /// search along it. Returns the correction's energy norm `|Δu·R|` and the step taken.
+    fn correct(&mut self) -> Result<(f64, f64), NewtonFailure> {
+        self.solve_correction()?;
+        self.start_correction();
+        if self.kink_points_would_penetrate()? {
+            self.move_to(0.0);
+            self.solve_again()?;
+            self.start_correction();
+        }
+        let ws = &mut *self.ws;
+        let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
+        if self.norms.e0 == 0.0 {
+            self.norms.e0 = energy;
+        }
+        self.norms.e_last = energy;
+        let step = self.globalise()?;
+        if self.state.contact.resting_taken() {
+            // the iterate is judged with every kink taken open, as its states are decided
+            self.state.contact.set_kink(Kink::Open);
             self.assemble(true)?;
         }
+        Ok((energy, step))
+    }
+
+    /// Keep the iterate the correction in `ws.du` starts from, and the force unknowns at its
+    /// full step.
+    fn start_correction(&mut self) {
+        let ws = &mut *self.ws;
+        ws.u_before.clone_from(&self.state.u);
+        ws.alphas_before.clone_from(&self.state.alphas);
+        self.state.contact.save_iterate();
+        let (eq, du) = (&self.asm.dofs.eq, &ws.du);
+        self.state.contact.correct_forces(&|d| eq[d].map_or(0.0, |e| du[e]));
+    }
+
+    /// The B-derivative at the normal kink (Pang, Math Oper Res 15 (1990) 311–341; Qi, Math
+    /// Oper Res 18 (1993) 227–244): a point touching without force has `N = max(0, N̂)` with
+    /// `N̂ = 0`, whose directional derivative along the correction `d` is `max(0, N̂′d)` —
+    /// the point is active in Newton's equation exactly when `d` drives it into its master.
+    /// The correction was solved with such points open; this evaluates the full step
+    /// (residual only) and says whether any of them is closed there; those are taken
+    /// resting ([`Kink::Resting`]) for this correction, the others stay open. The iterate is
+    /// restored.
+    fn kink_points_would_penetrate(&mut self) -> Result<bool, NewtonFailure> {
+        if self.state.contact.kink() != Kink::Open || self.state.contact.mark_kink_points() == 0 {
+            return Ok(false);
+        }
+        self.move_to(1.0);
+        let closing = match self.assemble(false) {
+            Ok(()) => self.state.contact.rest_kink_points_closed(),
+            Err(f) if inadmissible(&f) => 0,
+            Err(f) => return Err(f),
+        };
+        self.move_to(0.0);
+        Ok(closing > 0)
+    }
+
+    /// `Δu = −K⁻¹R` into `ws.du`. Where the tangent with the points touching without force
+    /// taken open is singular (a zero pivot, or a correction longer than the model: a body
+    /// held by nothing but the supports it rests on), the other element of the generalised
+    /// Jacobian is taken for this correction: they rest ([`Kink::Resting`]).
+    fn solve_correction(&mut self) -> Result<(), NewtonFailure> {
+        let size = super::tangent_check::model_size(self.model);
+        let solved = self.solve_direction();
+        let sane = |du: &[f64]| du.iter().all(|d| d.abs() <= size);
+        let open = self.state.contact.kink() == Kink::Open;
+        if (solved.is_ok() && sane(&self.ws.du)) || !open || self.state.contact.resting_points() == 0 {
+            return solved;
+        }
+        self.solve_resting()
+    }
+
+    /// Assemble the iterate with the points at the normal kink resting ([`Kink::Resting`])
+    /// and solve for the correction.
+    fn solve_resting(&mut self) -> Result<(), NewtonFailure> {
+        self.state.contact.set_kink(Kink::Resting);
+        self.solve_again()
+    }
+
+    /// Assemble the iterate again (the contact points' kink sides changed) and solve for the
+    /// correction.
+    fn solve_again(&mut self) -> Result<(), NewtonFailure> {
+        self.assemble(true)?;
+        let merit = self.asm.merit(&self.state.contact);
+        *self.ws.merits.last_mut().expect("the iterate was tested") = merit;
+        self.asm.free_residual(&mut self.ws.r);
+        self.solve_direction()
+    }
+
+    fn solve_direction(&mut self) -> Result<(), NewtonFailure> {
         let ws = &mut *self.ws;
         for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
         self.asm.solve(&mut ws.du)?;
-        let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
-        if self.e0 == 0.0 {
-            self.e0 = energy;
-        }
-        self.e_last = energy;
-        ws.u_before.clone_from(&self.state.u);
-        ws.alphas_before.clone_from(&self.state.alphas);
-        self.shortened = 1.0;
-        apply(&mut self.state.u, &self.asm.dofs.eq, &ws.du, 1.0);
-        // the held points are free again once the first correction is computed: the line
-        // search's trials (and so the next iterate) are assembled with their own state;
-        // a correction made with stick held is the elastic predictor, taken in full (the
-        // return mapping at its end finds the slipping points; backtracking on ‖R‖ from it
-        // would undo the motion the stick tangent predicted)
-        let elastic_predictor = self.state.contact.stick_held_count() > 0;
-        for flat in ws.held.drain(..) {
-            self.state.contact.release(flat);
-        }
-        if !self.settings.line_search || elastic_predictor {
-            // the iterate is assembled (and shortened if inadmissible) at the next iteration
-            return Ok((energy, 1.0, None));
-        }
-        loop {
-            match self.line_search(k) {
-                Ok((step, reuse)) => return Ok((energy, step * self.shortened, reuse)),
-                Err(f) if inadmissible(&f) => self.shorten(f)?,
-                Err(e) => return Err(e),
-            }
-        }
-    }
-
-    /// Will the full step converge? Then its trial needs no tangent (one fewer per
-    /// increment): the energy test is already met by this correction and the residual,
-    /// reduced at the rate of the last iteration (an overestimate where convergence is
-    /// quadratic), falls below the tolerance. A wrong guess costs one more assembly.
-    fn likely_converged(&self, k: usize) -> bool {
-        let r = &self.ws.residuals;
-        let r_prev = r.len().checked_sub(2).map(|i| r[i]);
-        k > 0
-            && self.e_last <= self.settings.energy_tol * self.e0.max(f64::MIN_POSITIVE)
-            && r_prev.is_some_and(|rp| rp > 0.0 && self.rn * (self.rn / rp) <= self.tol)
-    }
-
-    /// The slope search where the iterate has an energy (no frictional slip) and the
-    /// correction descends (`g(0) = Δu·R(u) < 0`); backtracking on `‖R‖` elsewhere.
-    fn line_search(&mut self, k: usize) -> Result<(f64, Option<bool>), NewtonFailure> {
-        let want_tangent = !self.likely_converged(k);
-        let g0 = self.ws.du.iter().zip(&self.ws.r).map(|(a, b)| a * b).sum::<f64>();
-        let slope_ok = self.settings.line_search_rule == LineSearch::Slope
-            && g0 < 0.0
-            && self.state.contact.conservative(self.model);
-        let (model, t) = (self.model, self.t);
-        if slope_ok {
-            slope_search(model, self.asm, self.state, t, self.ws, g0, want_tangent)
-        } else {
-            residual_backtracking(model, self.asm, self.state, t, self.ws, self.rn, want_tangent)
-        }
-    }
-
-    /// Count the active-set changes of the new iterate, freeze points that keep
-    /// chattering, and note what the assembler now holds. Returns the changes.
-    fn watch_active_set(&mut self, k: usize, reuse: Option<bool>) -> usize {
-        let ws = &mut *self.ws;
-        let changes = ws.watch.observe(&self.state.contact, k + 1);
-        // frozen decisions change what the next assembly computes
-        let after = self.settings.freeze_after;
-        let froze = self.freezing
-            && ws
-                .watch
-                .freeze_chattering(&mut self.state.contact, after, &mut ws.frozen)
-                > 0;
-        self.assembled = match (reuse, froze) {
-            (Some(true), false) => Assembled::Full,
-            (Some(false), false) => Assembled::Residual,
-            _ => Assembled::Nothing,
-        };
-        changes
+        Ok(())
     }
 
     /// Why the iteration stopped without converging: an active-set cycle, or too many
@@ -452,26 +436,12 @@ impl<'a> Iterate<'a> {
     }
 }
 
-/// What the assembler holds at the current iterate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Assembled {
-    Nothing,
-    /// The residual (a full-step trial expected to converge).
-    Residual,
-    /// Residual and tangent.
-    Full,
-}
-
 pub(super) fn apply(u: &mut [f64], eq: &[Option<usize>], du: &[f64], s: f64) {
     for (d, e) in eq.iter().enumerate() {
         if let Some(e) = e {
             u[d] += s * du[*e];
         }
     }
-}
-
-pub(super) fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// Observed convergence orders `p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k−1})` of a residual

@@ -12,8 +12,6 @@ pub enum NewtonFailure {
     MaxIterations { iterations: usize },
     #[error("active-set cycle: {points} contact points kept changing state or segment ({iterations} iterations)")]
     ActiveSetCycle { iterations: usize, points: usize },
-    #[error("frozen contact points did not verify: ‖R‖ = {residual:.3e} with them released")]
-    FrozenNotVerified { residual: f64 },
     #[error("residual diverged (‖R‖ = {residual:.3e})")]
     Diverged { residual: f64 },
     #[error("non-finite residual")]
@@ -47,9 +45,7 @@ impl NewtonFailure {
     pub fn kind(&self) -> FailureKind {
         match self {
             NewtonFailure::MaxIterations { .. } | NewtonFailure::Augmentation { .. } => FailureKind::NoConvergence,
-            NewtonFailure::ActiveSetCycle { .. } | NewtonFailure::FrozenNotVerified { .. } => {
-                FailureKind::ActiveSetCycle
-            }
+            NewtonFailure::ActiveSetCycle { .. } => FailureKind::ActiveSetCycle,
             NewtonFailure::Diverged { .. } => FailureKind::Diverged,
             NewtonFailure::NonFinite => FailureKind::NonFinite,
             NewtonFailure::Tunnelled { .. } => FailureKind::LostContact,

@@ -14,6 +14,14 @@ pub struct TrialState {
 }
 
 impl TrialState {
+    /// Make this state's iterate `other`'s (same model, same increment), without allocating
+    /// (see [`ContactSystem::copy_iterate_from`]).
+    pub fn copy_iterate_from(&mut self, other: &TrialState) {
+        self.u.copy_from_slice(&other.u);
+        self.alphas.copy_from_slice(&other.alphas);
+        self.contact.copy_iterate_from(&other.contact);
+    }
+
     pub fn new(model: &Model) -> Self {
         TrialState {
             u: vec![0.0; model.dof_count()],

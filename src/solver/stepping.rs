@@ -131,6 +131,8 @@ struct ConvergedIncrement {
     conv: Converged,
     t_new: f64,
     cutbacks: usize,
+    /// Closed points converged on an extension of their segment.
+    on_extension: usize,
 }
 
 /// What the load stepping carries from one increment to the next.
@@ -172,6 +174,8 @@ impl<'a> Stepping<'a> {
         asm.set_threads(threads, model.elements.len());
         asm.linear.set_threads(threads, crate::linalg::chooser::PARALLEL_FROM);
         let mut committed = TrialState::new(model);
+        let penalty = settings.newton.active_set == crate::settings::ActiveSet::Penalty;
+        committed.contact.set_penalty_weights(model, penalty);
         let start = Config {
             model,
             u: &committed.u,
@@ -228,11 +232,8 @@ impl<'a> Stepping<'a> {
     }
 
     /// Attempts at the increment until one converges: a failed predicted start is retried
-    /// from the converged state, any other failure cuts the step in half (or ends the run).
-    /// A predicted start given up at its first inadmissible correction (see
-    /// `newton::Iterate::shorten`) is tried once more, with shortened corrections, when the
-    /// converged start fails too: the ladder of starts costs no convergence the patient
-    /// prediction would have found.
+    /// from the converged state at the same step, any other failure cuts the step in half
+    /// (or ends the run).
     fn converge_increment(
         &mut self,
         obs: &mut dyn Observer,
@@ -240,7 +241,6 @@ impl<'a> Stepping<'a> {
     ) -> Result<ConvergedIncrement, SolveError> {
         let st = &self.settings.stepping;
         let mut predict = st.predictor == Predictor::Secant && self.last_dt.is_some();
-        let (mut patient, mut abandoned) = (false, false);
         let (mut attempt, mut cutbacks) = (0, 0);
         loop {
             let t_new = self.next_time();
@@ -251,19 +251,18 @@ impl<'a> Stepping<'a> {
                 increment: self.increment,
                 attempt,
                 predicted: predict,
-                shorten_predicted: patient,
             };
             match self.attempt(&mut trial, target, obs, stop)? {
                 Ok(conv) => {
                     return Ok(ConvergedIncrement {
+                        on_extension: trial.contact.on_extensions(),
                         state: trial,
                         conv,
                         t_new,
                         cutbacks,
                     })
                 }
-                Err(f) if predict && !patient => {
-                    abandoned = super::newton::inadmissible(&f);
+                Err(f) if predict => {
                     let message = format!(
                         "increment {} at t = {t_new:.6}: {f} from the predicted start; retrying from the last converged state",
                         self.increment
@@ -271,16 +270,7 @@ impl<'a> Stepping<'a> {
                     log(obs, LogLevel::Info, self.increment, t_new, message)?;
                     predict = false;
                 }
-                Err(f) if abandoned => {
-                    let message = format!(
-                        "increment {} at t = {t_new:.6}: {f} from the last converged state; retrying from the predicted start with shortened corrections",
-                        self.increment
-                    );
-                    log(obs, LogLevel::Info, self.increment, t_new, message)?;
-                    (predict, patient, abandoned) = (true, true, false);
-                }
                 Err(f) => {
-                    (predict, patient) = (false, false);
                     self.cut_back(f, &trial, t_new, cutbacks, obs)?;
                     cutbacks += 1;
                 }
@@ -382,7 +372,11 @@ impl<'a> Stepping<'a> {
     fn failure_reason(&self, f: &NewtonFailure) -> String {
         let may_lack_a_solution = matches!(
             f.kind(),
-            FailureKind::NoConvergence | FailureKind::Diverged | FailureKind::LinearSolver | FailureKind::NonFinite
+            FailureKind::NoConvergence
+                | FailureKind::ActiveSetCycle
+                | FailureKind::Diverged
+                | FailureKind::LinearSolver
+                | FailureKind::NonFinite
         );
         match may_lack_a_solution.then(|| friction_limit(self.model, &self.committed.contact, self.t)) {
             Some(Some(hint)) => format!("{f}; {hint}"),
@@ -408,6 +402,10 @@ impl<'a> Stepping<'a> {
         let (points, monitors, crossings, commit_time) = self.commit_contact();
         self.check_penetration(&points, obs)?;
         self.summary.crossings += crossings.len();
+        self.report_history_jumps(&crossings, obs)?;
+        self.summary.on_extension += usize::from(done.on_extension > 0);
+        self.summary.line_search_failures += done.conv.line_search_failures;
+        self.summary.front_iterations += done.conv.front_iterations;
         let rec = IncrementRecord {
             increment: self.increment,
             t: self.t,
@@ -420,6 +418,10 @@ impl<'a> Stepping<'a> {
             monitor: monitors.first().cloned(),
             monitors,
             reaction_total: self.reaction_total(),
+            accepted_by: done.conv.accepted_by.as_str().into(),
+            line_search_failures: done.conv.line_search_failures,
+            on_extension: done.on_extension,
+            front_iterations: done.conv.front_iterations,
         };
         self.summary.monitor = rec.monitor.clone();
         self.summary.monitors = rec.monitors.clone();
@@ -473,6 +475,36 @@ impl<'a> Stepping<'a> {
         let commit_time = committing.elapsed();
         let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
         (points, monitors, crossings, commit_time)
+    }
+
+    /// Count the crossings at which the friction history jumped (see
+    /// [`RunSummary::history_jumps`]) and warn at the first one: the run goes on, but its
+    /// force history is then not the method's.
+    fn report_history_jumps(&mut self, crossings: &[CrossingRecord], obs: &mut dyn Observer) -> Result<(), SolveError> {
+        for c in crossings {
+            let (before, after) = (c.trial_before, c.trial_after);
+            // a point that carried no traction into the crossing has no history to lose
+            let carried = before.abs() > 1e-9 * after.abs();
+            if !carried || (after - before).abs() <= super::run::HISTORY_JUMP * before.abs().max(after.abs()) {
+                continue;
+            }
+            self.summary.history_jumps += 1;
+            if self.summary.history_jumps == 1 {
+                let pair = &self.model.contacts[c.pair];
+                let message = format!(
+                    "crossing of {} of `{}` from segment {} to {}: the trial traction jumped from {before:.4e} to {after:.4e} — \
+                     the `{}` transfer does not carry the friction history across segments, and the force history is wrong from \
+                     here on (use transfer = \"continuous\"; seed Fig. 4)",
+                    self.model.slave_label(pair.slaves[c.slave]),
+                    pair.name,
+                    c.from_segment,
+                    c.to_segment,
+                    pair.transfer.name()
+                );
+                log(obs, LogLevel::Warning, self.increment, self.t, message)?;
+            }
+        }
+        Ok(())
     }
 
     /// Warn the first time a converged increment penetrates deeper than

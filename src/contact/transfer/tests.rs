@@ -47,8 +47,9 @@ fn problem(scheme: TransferKind, slave_x: f64, same_segment: bool) -> PointProbl
             },
             touch_gap: None,
         }),
-        forced: None,
-        stick_held: false,
+        rule: crate::contact::decision::Rule::Penalty,
+        kink: crate::contact::decision::Kink::Open,
+        warm: false,
         at_vertex: None,
         multiplier: None,
     }
