@@ -128,3 +128,146 @@ fn ironing_completes_and_converges_on_coarse_and_medium_meshes_and_half_steps() 
 fn ironing_full_refinement_study() {
     study(&[[18, 6], [36, 12], [72, 24]], &[120, 240, 480]);
 }
+
+/// One run of the penalty study: ironing with `ε_N = ε_T = eps · E` (E = 1).
+#[derive(Debug)]
+struct Cell {
+    mu: f64,
+    mesh: [usize; 2],
+    increments: usize,
+    eps: f64,
+    outcome: String,
+    iterations_per_increment: f64,
+    cutbacks: usize,
+    ratio: f64,
+    /// The run warned that elements lost stability (hourglassing: the element, not the
+    /// contact, failing to resolve the deformation).
+    elements_unstable: bool,
+}
+
+fn cell(mu: f64, mesh: [usize; 2], increments: usize, eps: f64) -> Cell {
+    let sets = [
+        format!("contact.mu={mu}"),
+        format!("body.block.mesh.elements=[{}, {}]", mesh[0], mesh[1]),
+        format!("stepping.increments={increments}"),
+        format!("contact.eps_n={eps}"),
+        format!("contact.eps_t={eps}"),
+        "solver.threads=1".to_string(),
+    ];
+    let sets: Vec<&str> = sets.iter().map(String::as_str).collect();
+    let (r, m) = common::solve(&common::scene("ironing", &sets));
+    let (outcome, iterations_per_increment, cutbacks, ratio) = match &r {
+        Ok(s) => (
+            "completed".to_string(),
+            s.newton_iterations as f64 / s.increments as f64,
+            s.cutbacks,
+            sliding(&m).0,
+        ),
+        Err(e) => (e.to_string(), f64::NAN, usize::MAX, f64::NAN),
+    };
+    let elements_unstable = m.logs.iter().any(|l| l.message.contains("lost stability"));
+    Cell {
+        mu,
+        mesh,
+        increments,
+        eps,
+        outcome,
+        iterations_per_increment,
+        cutbacks,
+        ratio,
+        elements_unstable,
+    }
+}
+
+/// Every (μ, mesh, step, ε) run on as many threads as the machine has, one thread each.
+fn penalty_study(meshes: &[[usize; 2]], steps: &[usize]) -> Vec<Cell> {
+    let mut jobs = Vec::new();
+    for &mesh in meshes {
+        for &increments in steps {
+            for mu in [0.1, 0.3] {
+                for eps in [1e1, 1e2, 1e3, 1e4, 1e5, 1e6] {
+                    jobs.push((mu, mesh, increments, eps));
+                }
+            }
+        }
+    }
+    // the finest meshes first: the longest runs start first
+    jobs.reverse();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let cells = std::sync::Mutex::new(Vec::new());
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get());
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(&(mu, mesh, increments, eps)) = jobs.get(k) else {
+                    break;
+                };
+                let c = cell(mu, mesh, increments, eps);
+                println!("{c:?}");
+                cells.lock().unwrap().push(c);
+            });
+        }
+    });
+    let mut cells = cells.into_inner().unwrap();
+    cells.sort_by(|a, b| {
+        (a.mesh, a.increments, a.mu, a.eps)
+            .partial_cmp(&(b.mesh, b.increments, b.mu, b.eps))
+            .unwrap()
+    });
+    println!("| mesh | increments | μ | ε/E | outcome | Newton its / increment | cut-backs | F_x/F_y |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for c in &cells {
+        println!(
+            "| {}×{} | {} | {} | {:.0e} | {} | {:.2} | {} | {:.4} |",
+            c.mesh[0], c.mesh[1], c.increments, c.mu, c.eps, c.outcome, c.iterations_per_increment, c.cutbacks, c.ratio
+        );
+    }
+    cells
+}
+
+/// Issue 31's criteria: every run completes, without a cut-back at the nominal step (at most
+/// 2 on the finest mesh), with at most 6 Newton iterations per increment on average, and
+/// F_x/F_y within 0.01 of the gallery's penalty (ε = 1e2 E) on the same mesh and step. The
+/// one exception allowed is a run stopped by an inverted element after the element
+/// stability check warned that elements lost stability: the element's limit, reported.
+fn check_penalty_study(cells: &[Cell], finest: [usize; 2], nominal: usize) {
+    for c in cells {
+        if c.outcome != "completed" && c.elements_unstable && c.outcome.contains("det") {
+            println!("element limit, reported: {c:?}");
+            continue;
+        }
+        assert_eq!(c.outcome, "completed", "{c:?}");
+        if c.increments == nominal {
+            let allowed = if c.mesh == finest { 2 } else { 0 };
+            assert!(c.cutbacks <= allowed, "{c:?}");
+        }
+        assert!(c.iterations_per_increment <= 6.0, "{c:?}");
+        let Some(gallery) = (cells.iter()).find(|g| {
+            g.eps == 1e2 && g.mu == c.mu && g.mesh == c.mesh && g.increments == c.increments && g.ratio.is_finite()
+        }) else {
+            continue;
+        };
+        assert!((c.ratio - gallery.ratio).abs() < 0.01, "{c:?} against {gallery:?}");
+    }
+}
+
+/// The penalty study on the medium mesh at the nominal step (ε = 1e1 … 1e6 E, μ = 0.1, 0.3).
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release tier")]
+fn ironing_converges_the_same_for_penalties_from_1e1_to_1e6_times_e() {
+    let cells = penalty_study(&[[36, 12]], &[120]);
+    check_penalty_study(&cells, [36, 12], 120);
+}
+
+/// The whole penalty study: three meshes, the nominal and half step (72 runs; 16 cores: 69 s):
+/// `cargo test --release --test ironing ironing_penalty_study_on_every_mesh -- --ignored
+/// --nocapture`. Measured 2026-11-26 (16-core device): all 72 complete, 2.7–4.3 Newton
+/// iterations per increment, cut-backs at the nominal step only on 72×24 with μ = 0.1 (2 for
+/// ε ≤ 1e4 E). Table in docs/methods.md.
+#[test]
+#[ignore = "full penalty study"]
+fn ironing_penalty_study_on_every_mesh() {
+    let cells = penalty_study(&[[18, 6], [36, 12], [72, 24]], &[120, 240]);
+    check_penalty_study(&cells, [72, 24], 120);
+}

@@ -60,12 +60,6 @@ pub struct ContactSystem {
     /// Points found at the last pairing to have passed through their master (see
     /// [`Self::tunnelled`]), as `(pair, slave)`.
     tunnelled: Vec<(usize, usize)>,
-    /// The points at the normal kink when the last correction was solved (flat order; see
-    /// [`Self::mark_kink_points`]).
-    kink_points: Vec<bool>,
-    /// The marked points take [`Kink::Resting`] at the evaluations until the next
-    /// [`Self::set_kink`] (see [`Self::rest_kink_points_closed`]).
-    rest_marked: bool,
 }
 
 /// Receives one contact point's local contributions: its nodes, the residual of the penalty
@@ -254,8 +248,6 @@ impl ContactSystem {
             left: model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect(),
             multipliers,
             tunnelled: Vec::new(),
-            kink_points: Vec::with_capacity(model.contacts.iter().map(|p| p.slaves.len()).sum()),
-            rest_marked: false,
         }
     }
 
@@ -369,12 +361,9 @@ impl ContactSystem {
         let mut r_eq = [0.0; 2 * MAX_NODES];
         let mut k = [0.0; 4 * MAX_NODES * MAX_NODES];
         self.complementarity2 = 0.0;
-        let mut flat = 0;
         for (ip, pair) in cfg.model.contacts.iter().enumerate() {
             let (rho_n, rho_t) = self.weights[ip];
             for (is, &slave) in pair.slaves.iter().enumerate() {
-                let rests = self.rest_marked && self.kink_points[flat];
-                flat += 1;
                 let hist = self.committed[ip][is];
                 let paired = self.pairings[ip][is];
                 let forces = self.forces[ip][is];
@@ -402,7 +391,7 @@ impl ContactSystem {
                     true => Rule::Penalty,
                     false => Rule::AlartCurnier { forces, rho_n, rho_t },
                 };
-                problem.kink = if rests { Kink::Resting } else { self.kink };
+                problem.kink = self.kink;
                 // the first iterate's active set is the converged one where there is one
                 problem.warm = self.warm && hist.closed;
                 problem.at_vertex = paired.pinned.then_some(loc.xi.signum());

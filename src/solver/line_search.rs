@@ -171,7 +171,7 @@ impl Iterate<'_> {
 
     /// The state a fraction `s` along the correction: displacements, enhanced-strain
     /// parameters from the start of the correction, contact force unknowns.
-    pub(super) fn move_to(&mut self, s: f64) {
+    fn move_to(&mut self, s: f64) {
         let ws = &mut *self.ws;
         self.state.u.copy_from_slice(&ws.u_before);
         self.state.alphas.copy_from_slice(&ws.alphas_before);

@@ -330,11 +330,6 @@ impl<'a> Iterate<'a> {
     fn correct(&mut self) -> Result<(f64, f64), NewtonFailure> {
         self.solve_correction()?;
         self.start_correction();
-        if self.kink_points_would_penetrate()? {
-            self.move_to(0.0);
-            self.solve_again()?;
-            self.start_correction();
-        }
         let ws = &mut *self.ws;
         let energy = ws.du.iter().zip(&ws.r).map(|(a, b)| a * b).sum::<f64>().abs();
         if self.norms.e0 == 0.0 {
@@ -361,28 +356,6 @@ impl<'a> Iterate<'a> {
         self.state.contact.correct_forces(&|d| eq[d].map_or(0.0, |e| du[e]));
     }
 
-    /// The B-derivative at the normal kink (Pang, Math Oper Res 15 (1990) 311–341; Qi, Math
-    /// Oper Res 18 (1993) 227–244): a point touching without force has `N = max(0, N̂)` with
-    /// `N̂ = 0`, whose directional derivative along the correction `d` is `max(0, N̂′d)` —
-    /// the point is active in Newton's equation exactly when `d` drives it into its master.
-    /// The correction was solved with such points open; this evaluates the full step
-    /// (residual only) and says whether any of them is closed there; those are taken
-    /// resting ([`Kink::Resting`]) for this correction, the others stay open. The iterate is
-    /// restored.
-    fn kink_points_would_penetrate(&mut self) -> Result<bool, NewtonFailure> {
-        if self.state.contact.kink() != Kink::Open || self.state.contact.mark_kink_points() == 0 {
-            return Ok(false);
-        }
-        self.move_to(1.0);
-        let closing = match self.assemble(false) {
-            Ok(()) => self.state.contact.rest_kink_points_closed(),
-            Err(f) if inadmissible(&f) => 0,
-            Err(f) => return Err(f),
-        };
-        self.move_to(0.0);
-        Ok(closing > 0)
-    }
-
     /// `Δu = −K⁻¹R` into `ws.du`. Where the tangent with the points touching without force
     /// taken open is singular (a zero pivot, or a correction longer than the model: a body
     /// held by nothing but the supports it rests on), the other element of the generalised
@@ -402,12 +375,6 @@ impl<'a> Iterate<'a> {
     /// and solve for the correction.
     fn solve_resting(&mut self) -> Result<(), NewtonFailure> {
         self.state.contact.set_kink(Kink::Resting);
-        self.solve_again()
-    }
-
-    /// Assemble the iterate again (the contact points' kink sides changed) and solve for the
-    /// correction.
-    fn solve_again(&mut self) -> Result<(), NewtonFailure> {
         self.assemble(true)?;
         let merit = self.asm.merit(&self.state.contact);
         *self.ws.merits.last_mut().expect("the iterate was tested") = merit;

@@ -58,7 +58,6 @@ impl ContactSystem {
     /// next evaluations ([`Kink`]).
     pub fn set_kink(&mut self, kink: Kink) {
         self.kink = kink;
-        self.rest_marked = false;
     }
 
     /// Decide the states by the force unknowns alone at the next evaluations (see
@@ -71,9 +70,9 @@ impl ContactSystem {
         self.kink
     }
 
-    /// Whether some points take [`Kink::Resting`] at the evaluations now.
+    /// Whether the points at the kink take [`Kink::Resting`] at the evaluations now.
     pub fn resting_taken(&self) -> bool {
-        self.kink == Kink::Resting || self.rest_marked
+        self.kink == Kink::Resting
     }
 
     /// Points open at the last evaluation that rest on their master within the geometry's
@@ -81,32 +80,6 @@ impl ContactSystem {
     pub fn resting_points(&self) -> usize {
         let points = self.current.iter().flatten().zip(self.forces.iter().flatten());
         points.filter(|(p, f)| at_kink(p, f)).count()
-    }
-
-    /// Remember which points are at the normal kink at the current evaluation (the points
-    /// [`Self::resting_points`] counts); returns how many.
-    pub fn mark_kink_points(&mut self) -> usize {
-        self.kink_points.clear();
-        let points = self.current.iter().flatten().zip(self.forces.iter().flatten());
-        self.kink_points.extend(points.map(|(p, f)| at_kink(p, f)));
-        self.kink_points.iter().filter(|&&k| k).count()
-    }
-
-    /// Keep marked, of the points marked by [`Self::mark_kink_points`], those closed at the
-    /// current evaluation (a trial along a correction that took them open: it drives them
-    /// into their master), and take them resting at the evaluations until the next
-    /// [`Self::set_kink`]. Returns how many.
-    pub fn rest_kink_points_closed(&mut self) -> usize {
-        let closed = self
-            .current
-            .iter()
-            .flatten()
-            .map(|p| p.eval.is_some_and(|e| e.state != ContactState::Open));
-        for (k, c) in self.kink_points.iter_mut().zip(closed) {
-            *k = *k && c;
-        }
-        self.rest_marked = true;
-        self.kink_points.iter().filter(|&&k| k).count()
     }
 
     /// `Σ C²` of the complementarity residuals at the last evaluation (see
