@@ -95,7 +95,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
             .iter()
             .map(|p| {
                 format!(
-                    "{}: {} on {} ({})",
+                    "{}: {} against the master {} ({})",
                     p.name,
                     count(p.slaves.len(), "slave", "slaves"),
                     p.master,

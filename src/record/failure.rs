@@ -109,19 +109,28 @@ pub struct ChangingPoint {
 }
 
 impl ChangingPoint {
-    /// One phrase: `node 12 of `base`: 5 changes from iteration 2, ξ = 0.41: Stick@3 → Open@-`.
+    /// One phrase: `node 12 of `base`: 5 changes, the first at iteration 2; its last 3
+    /// iterates: Stick@3 → Open@- → Stick@3; ξ = 0.41` (`unpaired` where it has no
+    /// projection). The iterates shown are the last ones kept, which need not include the
+    /// changes counted.
     pub fn describe(&self) -> String {
         let states: Vec<String> = (self.history.iter())
             .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
             .collect();
+        let xi = match self.xi.is_finite() {
+            true => format!("ξ = {}", crate::format::plain(self.xi)),
+            false => "unpaired (no projection on its master)".to_string(),
+        };
         format!(
-            "{} of `{}`: {} changes from iteration {}, ξ = {}: {}",
+            "{} of `{}`: {} {}, the first at iteration {}; its last {} iterates: {}; {}",
             self.slave_label,
             self.pair_name,
             self.changes,
+            if self.changes == 1 { "change" } else { "changes" },
             self.first_change,
-            crate::format::plain(self.xi),
-            states.join(" → ")
+            states.len(),
+            states.join(" → "),
+            xi
         )
     }
 }
@@ -151,5 +160,35 @@ mod tests {
             assert_eq!(FailureKind::parse(old), Some(k));
             assert_eq!(serde_json::from_str::<FailureKind>(&format!("\"{old}\"")).unwrap(), k);
         }
+    }
+
+    #[test]
+    fn a_changing_point_says_what_its_history_shows_and_when_it_is_unpaired() {
+        let open = PointDecision {
+            state: ContactState::Open,
+            segment: None,
+        };
+        let p = ChangingPoint {
+            pair: 0,
+            pair_name: "incline".into(),
+            slave: 0,
+            slave_label: "node 0".into(),
+            changes: 2,
+            first_change: 2,
+            history: vec![open; 3],
+            xi: f64::NAN,
+        };
+        let d = p.describe();
+        assert_eq!(
+            d,
+            "node 0 of `incline`: 2 changes, the first at iteration 2; its last 3 iterates: \
+             Open@- → Open@- → Open@-; unpaired (no projection on its master)"
+        );
+        let one = ChangingPoint {
+            changes: 1,
+            xi: 0.5,
+            ..p
+        };
+        assert!(one.describe().contains("1 change, the first") && one.describe().ends_with("ξ = 0.5"));
     }
 }

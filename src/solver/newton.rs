@@ -337,11 +337,7 @@ impl<'a> Iterate<'a> {
         }
         self.norms.e_last = energy;
         let step = self.globalise()?;
-        if self.state.contact.resting_taken() {
-            // the iterate is judged with every kink taken open, as its states are decided
-            self.state.contact.set_kink(Kink::Open);
-            self.assemble(true)?;
-        }
+        self.state.contact.set_kink(Kink::Open);
         Ok((energy, step))
     }
 

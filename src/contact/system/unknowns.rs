@@ -70,11 +70,6 @@ impl ContactSystem {
         self.kink
     }
 
-    /// Whether the points at the kink take [`Kink::Resting`] at the evaluations now.
-    pub fn resting_taken(&self) -> bool {
-        self.kink == Kink::Resting
-    }
-
     /// Points open at the last evaluation that rest on their master within the geometry's
     /// precision without a force unknown: the points [`Kink::Resting`] would take closed.
     pub fn resting_points(&self) -> usize {
