@@ -559,27 +559,7 @@ pub fn quad_residual_tangent_with(
         it += 1;
     };
     if eas {
-        // R* = R_u − K_uα (K_αα⁻¹ R_α); K* = K_uu − W K_αu with W = K_uα K_αα⁻¹
-        let mut y = [0.0; 4];
-        for (m, v) in y.iter_mut().enumerate() {
-            *v = (0..4).map(|n| inv[(m, n)] * t.ra[n]).sum();
-        }
-        for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
-            *ri -= (0..4).map(|m| ki[m] * y[m]).sum::<f64>();
-        }
-        if want_k {
-            let mut w = [[0.0; 4]; 8];
-            for (wi, ki) in w.iter_mut().zip(&t.kua) {
-                for (m, v) in wi.iter_mut().enumerate() {
-                    *v = (0..4).map(|n| ki[n] * inv[(n, m)]).sum();
-                }
-            }
-            for (i, wi) in w.iter().enumerate() {
-                for j in i..8 {
-                    t.kuu[i][j] -= (0..4).map(|m| wi[m] * t.kua[j][m]).sum::<f64>();
-                }
-            }
-        }
+        condense(&mut t, &inv, want_k);
         alpha.copy_from_slice(&al);
     }
     if let Some(kout) = k {
@@ -592,6 +572,33 @@ pub fn quad_residual_tangent_with(
     }
     r.copy_from_slice(&t.ru);
     Ok(t.energy)
+}
+
+/// Static condensation of the enhanced-strain parameters at a converged `α`:
+/// `R* = R_u − K_uα (K_αα⁻¹ R_α)` into `t.ru` and, with `want_k`, `K* = K_uu − W K_αu` with
+/// `W = K_uα K_αα⁻¹` into the upper triangle of `t.kuu` (`inv = K_αα⁻¹`).
+#[inline]
+fn condense(t: &mut Sums, inv: &Matrix4<f64>, want_k: bool) {
+    let mut y = [0.0; 4];
+    for (m, v) in y.iter_mut().enumerate() {
+        *v = (0..4).map(|n| inv[(m, n)] * t.ra[n]).sum();
+    }
+    for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
+        *ri -= (0..4).map(|m| ki[m] * y[m]).sum::<f64>();
+    }
+    if want_k {
+        let mut w = [[0.0; 4]; 8];
+        for (wi, ki) in w.iter_mut().zip(&t.kua) {
+            for (m, v) in wi.iter_mut().enumerate() {
+                *v = (0..4).map(|n| ki[n] * inv[(n, m)]).sum();
+            }
+        }
+        for (i, wi) in w.iter().enumerate() {
+            for j in i..8 {
+                t.kuu[i][j] -= (0..4).map(|m| wi[m] * t.kua[j][m]).sum::<f64>();
+            }
+        }
+    }
 }
 
 #[path = "quad_stab.rs"]

@@ -110,10 +110,11 @@ impl NearNullSpace {
     }
 }
 
+const FREE: usize = usize::MAX;
+
 /// Aggregate of each node (standard aggregation on the graph of the strong couplings of
 /// `a`'s nodes), and, for `theta > 0`, the filtered matrix for the prolongator smoothing.
 pub(super) fn aggregate(a: &Csr, nodes: &[Vec<usize>], theta: f64) -> (Vec<usize>, Option<Csr>) {
-    const FREE: usize = usize::MAX;
     let mut node_of = vec![FREE; a.nrows];
     let mut slot_of = vec![0usize; a.nrows];
     for (i, g) in nodes.iter().enumerate() {
@@ -122,27 +123,36 @@ pub(super) fn aggregate(a: &Csr, nodes: &[Vec<usize>], theta: f64) -> (Vec<usize
             slot_of[d] = s;
         }
     }
-    // node adjacency (without the node itself), strong couplings only: `s_IJ ≥ θ √(d_I d_J)`
-    // with `s_IJ² = Σ_c min(a_{Ic,Jc}, 0)²` over the like components (x with x, y with y)
-    // and `d_I² = Σ_c a_{Ic,Ic}²`. The unlike couplings (`(λ + μ)/4` whatever the element's
-    // shape) and the positive ones (a stretched bilinear element couples the two nodes of a
-    // long edge positively, in proportion to its aspect ratio) would hide the direction in
-    // which the element is stiff
+    let strong = strong_couplings(a, nodes, &node_of, &slot_of, theta);
+    let filtered = (theta > 0.0).then(|| filtered_matrix(a, nodes, &node_of, &strong));
+    (greedy_aggregates(&strong), filtered)
+}
+
+/// The graph of strong couplings between nodes, as `(ptr, adjacent)` (CSR, without the node
+/// itself).
+type Graph = (Vec<usize>, Vec<usize>);
+
+/// Node adjacency, strong couplings only: `s_IJ ≥ θ √(d_I d_J)` with `s_IJ² = Σ_c
+/// min(a_{Ic,Jc}, 0)²` over the like components (x with x, y with y) and `d_I² = Σ_c
+/// a_{Ic,Ic}²`. The unlike couplings (`(λ + μ)/4` whatever the element's shape) and the
+/// positive ones (a stretched bilinear element couples the two nodes of a long edge
+/// positively, in proportion to its aspect ratio) would hide the direction in which the
+/// element is stiff.
+fn strong_couplings(a: &Csr, nodes: &[Vec<usize>], node_of: &[usize], slot_of: &[usize], theta: f64) -> Graph {
     let nn = nodes.len();
     let mut marker = vec![FREE; nn];
     let mut block = vec![0.0f64; nn];
     let mut touched = Vec::new();
-    let mut own = vec![0.0f64; nn];
-    for (i, g) in nodes.iter().enumerate() {
-        for &d in g {
-            for k in a.ptr[d]..a.ptr[d + 1] {
-                if a.idx[k] == d {
-                    own[i] += a.val[k] * a.val[k];
-                }
-            }
-        }
-        own[i] = own[i].sqrt();
-    }
+    let own: Vec<f64> = nodes
+        .iter()
+        .map(|g| {
+            let sum: f64 = (g.iter())
+                .flat_map(|&d| (a.ptr[d]..a.ptr[d + 1]).filter(move |&k| a.idx[k] == d))
+                .map(|k| a.val[k] * a.val[k])
+                .sum();
+            sum.sqrt()
+        })
+        .collect();
     let mut adj_ptr = vec![0usize];
     let mut adj = Vec::new();
     for (i, g) in nodes.iter().enumerate() {
@@ -171,31 +181,38 @@ pub(super) fn aggregate(a: &Csr, nodes: &[Vec<usize>], theta: f64) -> (Vec<usize
         }
         adj_ptr.push(adj.len());
     }
-    // the filtered matrix: weak couplings lumped onto the diagonal (for the smoothing of
-    // the prolongator, so that it does not spread across weak directions)
-    let filtered = (theta > 0.0).then(|| {
-        let mut f = a.clone();
-        for (i, g) in nodes.iter().enumerate() {
-            let strong = &adj[adj_ptr[i]..adj_ptr[i + 1]];
-            for &d in g {
-                let mut lumped = 0.0;
-                let mut diag_k = None;
-                for k in f.ptr[d]..f.ptr[d + 1] {
-                    let j = node_of[f.idx[k]];
-                    if f.idx[k] == d {
-                        diag_k = Some(k);
-                    } else if j != i && !strong.contains(&j) {
-                        lumped += f.val[k];
-                        f.val[k] = 0.0;
-                    }
-                }
-                if let Some(k) = diag_k {
-                    f.val[k] += lumped;
+    (adj_ptr, adj)
+}
+
+/// `a` with its weak couplings lumped onto the diagonal (for the smoothing of the
+/// prolongator, so that it does not spread across weak directions).
+fn filtered_matrix(a: &Csr, nodes: &[Vec<usize>], node_of: &[usize], (adj_ptr, adj): &Graph) -> Csr {
+    let mut f = a.clone();
+    for (i, g) in nodes.iter().enumerate() {
+        let strong = &adj[adj_ptr[i]..adj_ptr[i + 1]];
+        for &d in g {
+            let mut lumped = 0.0;
+            let mut diag_k = None;
+            for k in f.ptr[d]..f.ptr[d + 1] {
+                let j = node_of[f.idx[k]];
+                if f.idx[k] == d {
+                    diag_k = Some(k);
+                } else if j != i && !strong.contains(&j) {
+                    lumped += f.val[k];
+                    f.val[k] = 0.0;
                 }
             }
+            if let Some(k) = diag_k {
+                f.val[k] += lumped;
+            }
         }
-        f
-    });
+    }
+    f
+}
+
+/// Standard aggregation in three passes over the graph of strong couplings.
+fn greedy_aggregates((adj_ptr, adj): &Graph) -> Vec<usize> {
+    let nn = adj_ptr.len() - 1;
     let nbrs = |i: usize| &adj[adj_ptr[i]..adj_ptr[i + 1]];
     let mut agg = vec![FREE; nn];
     let mut count = 0;
@@ -230,7 +247,7 @@ pub(super) fn aggregate(a: &Csr, nodes: &[Vec<usize>], theta: f64) -> (Vec<usize
             count += 1;
         }
     }
-    (agg, filtered)
+    agg
 }
 
 /// The tentative prolongator (one orthonormal block per aggregate) and the coarse level's
