@@ -278,6 +278,13 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
         format!("{} s", plain((s.wall_time_s * 1e3).round() / 1e3)),
     );
     row(o, "time spent", time_split(s));
+    if let Some(e) = s.equilibrium {
+        row(
+            o,
+            "equilibrium",
+            format!("each body's loads, reactions and contact forces sum to at most {e:.1e} of the force scale"),
+        );
+    }
     if s.augmentations > 0 {
         row(
             o,
@@ -294,6 +301,12 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
     if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
         row(o, "linear solver", line);
     }
+    warning_rows(o, s);
+}
+
+/// The summary's warnings and notes: elements that lost stability, friction history lost at
+/// crossings, states on segment extensions, moving contact fronts, deep penetration.
+fn warning_rows(o: &mut String, s: &RunSummary) {
     if let Some(u) = &s.unstable_elements {
         row(
                 o,
@@ -321,6 +334,16 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
             format!(
                 "{} increments converged with contact points on a segment's extension (a node crossed back and forth); {} line searches found no decrease (their shortest step was taken)",
                 s.on_extension, s.line_search_failures
+            ),
+        );
+    }
+    if s.element_check_errors > 0 {
+        row(
+            o,
+            "WARNING",
+            format!(
+                "the elements' stability could not be checked at {} converged increments (an element's tangent failed); see `/log`",
+                s.element_check_errors
             ),
         );
     }

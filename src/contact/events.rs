@@ -38,6 +38,10 @@ pub struct PointSnapshot {
     /// Unit normal and unit tangent of the master at the contact point.
     pub normal: [f64; 2],
     pub tangent: [f64; 2],
+    /// The contact force the slave receives, as assembled (x, y): `N n + T τ` on a
+    /// straight master, with the curvature factor of `∇ξ` on a curved one; zero for an
+    /// open point.
+    pub force: [f64; 2],
     /// Augmented-Lagrangian multiplier estimates the last solve of the increment used: the
     /// normal force `λ_N` and the tangential traction `λ_T` along the unit tangent (NaN in a
     /// penalty pair, and `λ_T` NaN for a point without friction history).
@@ -84,6 +88,7 @@ impl PointSnapshot {
             normal: [f64::NAN; 2],
             tangent: [f64::NAN; 2],
             multiplier: [f64::NAN; 2],
+            force: now.force,
         };
         let augmented = matches!(pair.enforcement, Enforcement::Augmented { .. });
         if augmented {

@@ -67,6 +67,24 @@ pub struct PointNow {
     pub segment: Option<usize>,
     pub eval: Option<PointEval<f64>>,
     pub path: Path,
+    /// The contact force the slave receives, as assembled ([`slave_force`]).
+    pub force: [f64; 2],
+}
+
+/// The contact force a point's slave receives, from its assembled local residual `r_eq`
+/// (internal-force sign: the force on a node is `−r`): `−r` of the slave node's slot
+/// (slot 0), or, for a rigid slave, the sum of `r` over the master's nodes (the point's
+/// forces sum to zero, its residual being invariant under a translation of its nodes). It
+/// is exact for every master geometry, the curvature factor of a curved master included.
+pub fn slave_force(slave_is_node: bool, r_eq: &[f64]) -> [f64; 2] {
+    match slave_is_node {
+        true if r_eq.len() >= 2 => [-r_eq[0], -r_eq[1]],
+        true => [0.0; 2],
+        false => {
+            let sum = |c: usize| r_eq.iter().skip(c).step_by(2).sum();
+            [sum(0), sum(1)]
+        }
+    }
 }
 
 impl Default for PointNow {
@@ -78,6 +96,7 @@ impl Default for PointNow {
                 direction: 0,
                 between: 0.0,
             },
+            force: [0.0; 2],
         }
     }
 }

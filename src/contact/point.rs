@@ -220,7 +220,6 @@ impl PointProblem {
             Some(end) => vertex::pinned_projection(&gb, rs, end),
             None => gb.project(rs),
         };
-        let zero = S::from(0.0);
         let lambda_n = self.multiplier.map_or(0.0, |m| m.normal);
         let n_eps = -proj.gap * self.law.eps_n + lambda_n;
         let sq = proj.a11.re().sqrt();
@@ -235,23 +234,7 @@ impl PointProblem {
         // a point taken closed at the kink (resting without force) sticks: the tangential kink
         // `|t̂| = μ N̂ = 0` taken on the same side
         let at_kink = self.kink == Kink::Resting && n_hat <= resting;
-        let mut eval = PointEval {
-            proj,
-            normal_force: zero,
-            t1_trial: zero,
-            t1: zero,
-            state: ContactState::Open,
-            t1_carried: 0.0,
-            complementarity: decision::complementarity(
-                &self.rule,
-                ContactState::Open,
-                false,
-                (0.0, 0.0),
-                0.0,
-                0.0,
-                0.0,
-            ),
-        };
+        let mut eval = self.open_eval(proj);
         if !closed {
             return eval;
         }
@@ -299,6 +282,29 @@ impl PointProblem {
             t1,
             state,
             ..eval
+        }
+    }
+
+    /// The evaluation of an open point at projection `proj`: no force, and the open state's
+    /// complementarity residuals under the point's rule.
+    fn open_eval<S: Scalar>(&self, proj: Projection<S>) -> PointEval<S> {
+        let zero = S::from(0.0);
+        PointEval {
+            proj,
+            normal_force: zero,
+            t1_trial: zero,
+            t1: zero,
+            state: ContactState::Open,
+            t1_carried: 0.0,
+            complementarity: decision::complementarity(
+                &self.rule,
+                ContactState::Open,
+                false,
+                (0.0, 0.0),
+                0.0,
+                0.0,
+                0.0,
+            ),
         }
     }
 
@@ -499,21 +505,26 @@ impl PointProblem {
                 }
             }
         }
-        PointEval {
-            proj: Projection {
-                xi: e.proj.xi.re,
-                gap: e.proj.gap.re,
-                rho: [e.proj.rho[0].re, e.proj.rho[1].re],
-                rho1: [e.proj.rho1[0].re, e.proj.rho1[1].re],
-                a11: e.proj.a11.re,
-            },
-            normal_force: e.normal_force.re,
-            t1_trial: e.t1_trial.re,
-            t1: e.t1.re,
-            state: e.state,
-            t1_carried: e.t1_carried,
-            complementarity: e.complementarity,
-        }
+        real_part(&e)
+    }
+}
+
+/// The values of an evaluation in dual numbers, without their derivatives.
+fn real_part<const N: usize>(e: &PointEval<Dual2SVec64<N>>) -> PointEval<f64> {
+    PointEval {
+        proj: Projection {
+            xi: e.proj.xi.re,
+            gap: e.proj.gap.re,
+            rho: [e.proj.rho[0].re, e.proj.rho[1].re],
+            rho1: [e.proj.rho1[0].re, e.proj.rho1[1].re],
+            a11: e.proj.a11.re,
+        },
+        normal_force: e.normal_force.re,
+        t1_trial: e.t1_trial.re,
+        t1: e.t1.re,
+        state: e.state,
+        t1_carried: e.t1_carried,
+        complementarity: e.complementarity,
     }
 }
 

@@ -408,6 +408,9 @@ impl ContactSystem {
                 now.eval = Some(e);
                 self.complementarity2 += e.complementarity[0].powi(2) + e.complementarity[1].powi(2);
                 let carries = e.state != ContactState::Open || forces != Forces::default();
+                if carries {
+                    now.force = super::history::slave_force(matches!(slave, Slave::Node(_)), &r_eq[..nd]);
+                }
                 if carries && nd > 0 {
                     // the penalty force's round-off (ε ε_mach |x|) enters the residual Newton
                     // is judged by through the complementarity residual, weighted by ρ

@@ -68,6 +68,7 @@ struct Point {
     normal: [f64; 2],
     tangent: [f64; 2],
     multiplier: [f64; 2],
+    force: [f64; 2],
 }
 
 impl Point {
@@ -90,6 +91,7 @@ impl Point {
             normal: p.normal,
             tangent: p.tangent,
             multiplier: p.multiplier,
+            force: p.force,
         }
     }
 
@@ -116,6 +118,7 @@ impl Point {
             normal: self.normal,
             tangent: self.tangent,
             multiplier: self.multiplier,
+            force: self.force,
         })
     }
 }

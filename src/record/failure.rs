@@ -34,7 +34,8 @@ pub enum FailureKind {
     LinearSolver,
     /// The run completed but a contact pair that must stay closed opened (a sweep's check).
     LostContact,
-    /// The run completed but an error metric exceeds the plan's bound (a sweep's check).
+    /// An error metric exceeds the plan's bound (a sweep's check), or a converged increment
+    /// failed the solver's own equilibrium check (`crate::solver::equilibrium`).
     WrongAnswer,
     /// The scene or an override is invalid; the run never started.
     BadInput,

@@ -132,6 +132,16 @@ pub struct IncrementRecord {
     /// in it (a moving contact front); each extended the iteration limit by one.
     #[serde(default)]
     pub front_iterations: usize,
+    /// The largest resultant force on a body of the converged state (its loads, reactions
+    /// and recorded contact forces), relative to the convergence test's force scale: zero
+    /// up to round-off in a state in equilibrium (`crate::solver::equilibrium`). NaN in
+    /// older recordings.
+    #[serde(with = "Real", default = "nan")]
+    pub equilibrium: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
 }
 
 impl IncrementRecord {
@@ -183,8 +193,13 @@ pub struct ContactPointRecord {
     /// Returned tangential traction along the unit tangent.
     #[serde(with = "Real")]
     pub traction: f64,
+    /// `open`, `stick` or `slip`; a closed point of a frictionless pair (`μ = 0`) is `slip`
+    /// (without friction there is no stick).
     pub state: ContactState,
-    /// The point moved to another segment in this increment.
+    /// The point is closed and was closed at the last converged increment, on another
+    /// segment: a crossing that carries friction history across a segment boundary (one
+    /// `/crossing` event each). A point that closes on another segment than the one it was
+    /// tracked on while open, or opens, is not crossing.
     pub crossing: bool,
     /// Slave position and contact point `ρ(ξ)`.
     #[serde(with = "Real2")]
@@ -201,6 +216,12 @@ pub struct ContactPointRecord {
     /// pairs; `λ_T` NaN for a point without friction history). Absent in older recordings.
     #[serde(with = "Real2", default = "nan2")]
     pub multiplier: [f64; 2],
+    /// The contact force the slave receives (x, y), as assembled at the converged state:
+    /// `normal_force · normal + traction · tangent` on a straight master, with the
+    /// curvature factor `1/(1 − ζ κ)` of `∇ξ` on a curved one; zero for an open point; its
+    /// negative acts on the master. NaN in older recordings.
+    #[serde(with = "Real2", default = "nan2")]
+    pub force: [f64; 2],
 }
 
 fn nan2() -> [f64; 2] {
@@ -258,6 +279,7 @@ impl ContactPointRecord {
             normal_force: s.normal_force,
             trial_traction: s.trial_traction,
             traction: s.traction,
+            force: s.force,
             state: s.state,
             crossing: s.crossing,
             position: s.position,

@@ -3,6 +3,7 @@
 pub mod active_set;
 pub mod augmented;
 pub mod element_check;
+pub mod equilibrium;
 pub mod friction_limit;
 mod line_search;
 pub mod monitor;
@@ -10,6 +11,7 @@ pub mod newton;
 mod newton_failure;
 pub mod penetration;
 pub mod run;
+mod search_reach;
 pub mod state;
 mod stepping;
 pub mod tangent_check;

@@ -8,20 +8,15 @@
 //!   pressed down with `sign = −1` plots in the first quadrant. It is the negative of the sum
 //!   of the contact forces the body *receives* in that direction,
 //!   taken from the contact point snapshots of the converged state: a slave point of a pair
-//!   receives `f = N n + T τ` (normal force along the master's outward normal, returned
-//!   tangential traction along the unit tangent); the master of that pair receives `−f`
-//!   (the point's residual is invariant under a translation of all its nodes, so its forces
-//!   sum to zero). The rigid body's force is the sum of `−f` over the closed points of the
-//!   pairs whose master it is, and of `f` over the pairs whose slave is one of its points or
-//!   vertices. The contact force is what holds the prescribed motion: its negative is the
-//!   force the drive applies.
-//!
-//! The directions are read from the snapshot: `n` is the master normal, except for a point
-//! pinned to a concave vertex (see [`crate::contact::vertex`]) whose force acts along the
-//! line from the vertex to the slave; `(position − contact point) / gap` gives that line in
-//! both cases, and is used when it departs from `n`. On a curved (arc) master the tangential
-//! part neglects the curvature factor `1/(1 − ζ κ_n)` of `∇ξ` (relative error `|ζ|/R`;
-//! nothing for frictionless contact).
+//!   receives `f`, the force its assembled residual puts on it (`N n + T τ`, normal force
+//!   along the master's outward normal and returned tangential traction along the unit
+//!   tangent, on a straight master; with the curvature factor `1/(1 − ζ κ)` of `∇ξ` on a
+//!   curved one; along the vertex-to-slave line for a point pinned to a concave vertex);
+//!   the master of that pair receives `−f` (the point's residual is invariant under a
+//!   translation of all its nodes, so its forces sum to zero). The rigid body's force is
+//!   the sum of `−f` over the closed points of the pairs whose master it is, and of `f`
+//!   over the pairs whose slave is one of its points or vertices. The contact force is what
+//!   holds the prescribed motion: its negative is the force the drive applies.
 
 use crate::assembly::Assembler;
 use crate::contact::events::PointSnapshot;
@@ -88,31 +83,8 @@ pub fn rigid_contact_force(model: &Model, r: usize, points: &[PointSnapshot]) ->
     total
 }
 
-/// The contact force on the slave of a closed point: `N n + T τ`, `τ` = `n` turned by +90°.
+/// The contact force on the slave of a closed point, as assembled at the converged state
+/// (`N n + T τ` on a straight master; see [`PointSnapshot::force`]).
 pub fn slave_force(p: &PointSnapshot) -> [f64; 2] {
-    let n = force_normal(p);
-    let tau = [-n[1], n[0]];
-    [
-        p.normal_force * n[0] + p.traction * tau[0],
-        p.normal_force * n[1] + p.traction * tau[1],
-    ]
-}
-
-/// The direction of the normal force: the master normal, or the vertex-to-slave line of a
-/// point pinned to a vertex (where the two differ).
-fn force_normal(p: &PointSnapshot) -> [f64; 2] {
-    let d = [p.position[0] - p.contact_point[0], p.position[1] - p.contact_point[1]];
-    let len = d[0].hypot(d[1]);
-    let scale = p.position[0].abs().max(p.position[1].abs()).max(1.0);
-    if !(p.gap.is_finite() && len > 1e-9 * scale) {
-        return p.normal;
-    }
-    // ζ n = position − contact point for a projection, and for a pinned point
-    let s = p.gap.signum() / len;
-    let line = [d[0] * s, d[1] * s];
-    if line[0] * p.normal[0] + line[1] * p.normal[1] > 1.0 - 1e-9 {
-        p.normal
-    } else {
-        line
-    }
+    p.force
 }

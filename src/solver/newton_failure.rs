@@ -23,6 +23,17 @@ pub enum NewtonFailure {
     )]
     Tunnelled { points: usize, first: String },
     #[error(
+        "rigid body `{body}` would move {travel:.3e} in this step, farther than the search radius {radius:.3e} of \
+         pair `{pair}`: a point out of reach at the step's start could end deeper inside its master than the \
+         search can see, unseen and without force"
+    )]
+    StepBeyondSearch {
+        body: String,
+        pair: String,
+        travel: f64,
+        radius: f64,
+    },
+    #[error(
         "augmented Lagrangian of pair `{pair}` not converged after {updates} multiplier updates: the \
          multipliers still change by {relative:.2e} of the pair's largest normal force (augmented_tol = {tol:.1e}); \
          raise augmented_max, loosen augmented_tol, or raise eps_n / eps_t (each update contracts the error \
@@ -48,7 +59,7 @@ impl NewtonFailure {
             NewtonFailure::ActiveSetCycle { .. } => FailureKind::ActiveSetCycle,
             NewtonFailure::Diverged { .. } => FailureKind::Diverged,
             NewtonFailure::NonFinite => FailureKind::NonFinite,
-            NewtonFailure::Tunnelled { .. } => FailureKind::LostContact,
+            NewtonFailure::Tunnelled { .. } | NewtonFailure::StepBeyondSearch { .. } => FailureKind::LostContact,
             NewtonFailure::Element(_) => FailureKind::InvertedElement,
             NewtonFailure::Linear(_) => FailureKind::LinearSolver,
         }

@@ -95,6 +95,12 @@ pub struct RunSummary {
     /// Iterations that reached a new active set and so extended the iteration limit
     /// (a moving contact front), over the run's converged increments.
     pub front_iterations: usize,
+    /// The worst equilibrium imbalance of a converged increment, `max_b |F_b| / F_ref`
+    /// ([`super::equilibrium`]); `None` before the first increment.
+    pub equilibrium: Option<f64>,
+    /// Converged increments at which the elements' stability check could not be evaluated
+    /// (an element's tangent failed: logged at the first).
+    pub element_check_errors: usize,
 }
 
 /// The relative change of the trial traction at a crossing above which the crossing is

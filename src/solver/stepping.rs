@@ -3,6 +3,7 @@
 //! records to the observer, grow the step back toward the nominal one.
 
 use super::augmented::solve_augmented;
+use super::equilibrium::{Imbalance, EQUILIBRIUM_TOLERANCE};
 use super::friction_limit::friction_limit;
 use super::newton::{Converged, IncrementTarget, NewtonFailure, Workspace};
 use super::run::{RunSummary, SolveError, UnstableSummary};
@@ -29,8 +30,19 @@ fn check_elements(
     summary: &mut RunSummary,
     obs: &mut dyn Observer,
 ) -> Result<(), ObserverError> {
-    let Ok(unstable) = super::element_check::unstable_elements(model, asm, &state.u, &state.alphas) else {
-        return Ok(());
+    let unstable = match super::element_check::unstable_elements(model, asm, &state.u, &state.alphas) {
+        Ok(unstable) => unstable,
+        Err(e) => {
+            // the state converged, but an element's tangent could not be evaluated for the
+            // check: said once, counted in the summary
+            summary.element_check_errors += 1;
+            if summary.element_check_errors == 1 {
+                let message =
+                    format!("the elements' stability could not be checked at this converged increment: {e}; not checked where this recurs");
+                log(obs, LogLevel::Warning, increment, t, message)?;
+            }
+            return Ok(());
+        }
     };
     if unstable.len() != *last_count && !unstable.is_empty() {
         let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
@@ -126,6 +138,16 @@ pub(super) fn drive(
 }
 
 /// An increment Newton converged, before it is committed.
+/// What committing the contact history of a converged increment gives the records.
+struct ContactCommit {
+    points: Vec<ContactPointRecord>,
+    monitors: Vec<MonitorRecord>,
+    crossings: Vec<CrossingRecord>,
+    imbalance: Option<Imbalance>,
+    /// The time the commit itself took (physics, not recording).
+    commit_time: std::time::Duration,
+}
+
 struct ConvergedIncrement {
     state: TrialState,
     conv: Converged,
@@ -252,6 +274,12 @@ impl<'a> Stepping<'a> {
                 attempt,
                 predicted: predict,
             };
+            if let Some(f) = super::search_reach::rigid_step_beyond_search(self.model, self.t, t_new) {
+                self.cut_back(f, &trial, t_new, cutbacks, obs)?;
+                cutbacks += 1;
+                attempt += 1;
+                continue;
+            }
             match self.attempt(&mut trial, target, obs, stop)? {
                 Ok(conv) => {
                     return Ok(ConvergedIncrement {
@@ -399,7 +427,14 @@ impl<'a> Stepping<'a> {
         self.summary.newton_iterations += done.conv.iterations;
         self.summary.augmentations += done.conv.augmentations;
         let handed = Instant::now();
-        let (points, monitors, crossings, commit_time) = self.commit_contact();
+        let ContactCommit {
+            points,
+            monitors,
+            crossings,
+            imbalance,
+            commit_time,
+        } = self.commit_contact();
+        self.check_equilibrium(imbalance)?;
         self.check_penetration(&points, obs)?;
         self.summary.crossings += crossings.len();
         self.report_history_jumps(&crossings, obs)?;
@@ -422,6 +457,7 @@ impl<'a> Stepping<'a> {
             line_search_failures: done.conv.line_search_failures,
             on_extension: done.on_extension,
             front_iterations: done.conv.front_iterations,
+            equilibrium: imbalance.map_or(0.0, |i| i.relative),
         };
         self.summary.monitor = rec.monitor.clone();
         self.summary.monitors = rec.monitors.clone();
@@ -448,18 +484,10 @@ impl<'a> Stepping<'a> {
         Ok(())
     }
 
-    /// The contact records and monitors of the converged iterate (they compare it with the
-    /// previous increment, so they come first), then the contact history committed and its
-    /// crossings; the last value is the time the commit took (physics, not recording).
-    #[allow(clippy::type_complexity)]
-    fn commit_contact(
-        &mut self,
-    ) -> (
-        Vec<ContactPointRecord>,
-        Vec<MonitorRecord>,
-        Vec<CrossingRecord>,
-        std::time::Duration,
-    ) {
+    /// The contact records, monitors and equilibrium check of the converged iterate (they
+    /// compare it with the previous increment, so they come first), then the contact
+    /// history committed and its crossings.
+    fn commit_contact(&mut self) -> ContactCommit {
         let cfg = Config {
             model: self.model,
             u: &self.committed.u,
@@ -470,11 +498,18 @@ impl<'a> Stepping<'a> {
             .map(|p| ContactPointRecord::from_snapshot(&self.labels, p))
             .collect();
         let monitors = super::monitor::records(self.model, &self.asm, &self.committed.u, self.t, &snapshots);
+        let imbalance = super::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, self.fref);
         let committing = Instant::now();
         let events = self.committed.contact.commit(&cfg);
         let commit_time = committing.elapsed();
         let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
-        (points, monitors, crossings, commit_time)
+        ContactCommit {
+            points,
+            monitors,
+            crossings,
+            imbalance,
+            commit_time,
+        }
     }
 
     /// Count the crossings at which the friction history jumped (see
@@ -526,6 +561,38 @@ impl<'a> Stepping<'a> {
             self.summary.deep_penetration = Some(p);
         }
         Ok(())
+    }
+
+    /// Keep the worst equilibrium imbalance of the run ([`super::equilibrium`]) and stop the
+    /// run, saying which body and by how much, when a converged increment is out of
+    /// equilibrium: a force was lost between the assembly and the records, and every figure
+    /// from here on would be wrong.
+    fn check_equilibrium(&mut self, imbalance: Option<Imbalance>) -> Result<(), SolveError> {
+        let Some(i) = imbalance else {
+            return Ok(());
+        };
+        if self.summary.equilibrium.is_none_or(|w| i.relative > w) {
+            self.summary.equilibrium = Some(i.relative);
+        }
+        if i.relative <= EQUILIBRIUM_TOLERANCE {
+            return Ok(());
+        }
+        let message = format!(
+            "body `{}` is out of equilibrium at the converged increment {}: its loads, reactions and contact forces sum to \
+             ({:.4e}, {:.4e}), {:.2e} of the force scale (tolerance {EQUILIBRIUM_TOLERANCE:.0e}) — a force was lost between \
+             the assembly and the records; the run stops rather than record a wrong answer (please report it with this recording)",
+            self.model.bodies[i.body].name, self.increment, i.resultant[0], i.resultant[1], i.relative
+        );
+        Err(SolveError::StepFailed {
+            increment: self.increment,
+            t: self.t,
+            dt: self.last_dt.unwrap_or(self.dt),
+            cutbacks: 0,
+            reason: message,
+            residuals: Vec::new(),
+            kind: FailureKind::WrongAnswer,
+            points: Vec::new(),
+        })
     }
 
     /// Sum of the reactions at the prescribed DOFs, per direction.

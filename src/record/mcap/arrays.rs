@@ -54,8 +54,13 @@ pub struct ContactArrays {
     /// Returned tangential traction along the unit tangent.
     #[serde(with = "Reals")]
     pub traction: Vec<f64>,
+    /// `open`, `stick` or `slip`; a closed point of a frictionless pair (`μ = 0`) is `slip`
+    /// (without friction there is no stick).
     pub state: Vec<ContactState>,
-    /// The point moved to another segment in this increment.
+    /// The point is closed and was closed at the last converged increment, on another
+    /// segment: a crossing that carries friction history across a segment boundary (one
+    /// `/crossing` event each). A point that closes on another segment than the one it was
+    /// tracked on while open, or opens, is not crossing.
     pub crossing: Vec<bool>,
     /// Slave position (current configuration).
     #[schemars(with = "Vec<Real2>")]
@@ -78,6 +83,12 @@ pub struct ContactArrays {
     #[serde(default, skip_serializing_if = "Vec::is_empty", with = "Real2s")]
     #[schemars(with = "Vec<Real2>")]
     pub multiplier: Vec<[f64; 2]>,
+    /// The contact force each slave receives (x, y), as assembled: `N n + T τ` on a straight
+    /// master, with the curvature factor of `∇ξ` on a curved one; zero for an open point
+    /// (absent in older recordings: NaN).
+    #[serde(default, with = "Real2s")]
+    #[schemars(with = "Vec<Real2>")]
+    pub force: Vec<[f64; 2]>,
 }
 
 impl ContactArrays {
@@ -101,8 +112,10 @@ impl ContactArrays {
             self.normal.len(),
             self.tangent.len(),
         ];
-        let multipliers_ok = self.multiplier.is_empty() || self.multiplier.len() == n;
-        if lengths.iter().any(|&l| l != n) || !multipliers_ok {
+        let optional_ok = [self.multiplier.len(), self.force.len()]
+            .iter()
+            .all(|&l| l == 0 || l == n);
+        if lengths.iter().any(|&l| l != n) || !optional_ok {
             return Err(format!(
                 "the arrays of pair {} at increment {} have different lengths ({n} slaves, then {lengths:?})",
                 self.pair, self.increment
@@ -148,6 +161,7 @@ impl ContactArrays {
                     normal: self.normal[k],
                     tangent: self.tangent[k],
                     multiplier: self.multiplier.get(k).copied().unwrap_or([f64::NAN; 2]),
+                    force: self.force.get(k).copied().unwrap_or([f64::NAN; 2]),
                 })
             })
             .collect()
@@ -201,7 +215,7 @@ impl Serialize for ContactColumns<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let (p, k) = (self.points, Some(self.take));
         let augmented = self.take.iter().any(|&i| p[i].multiplier.iter().any(|x| x.is_finite()));
-        let mut m = s.serialize_struct("ContactArrays", 19 + usize::from(augmented))?;
+        let mut m = s.serialize_struct("ContactArrays", 20 + usize::from(augmented))?;
         m.serialize_field("increment", &self.increment)?;
         m.serialize_field("t", &Item(self.t))?;
         m.serialize_field("pair", &self.pair)?;
@@ -224,6 +238,7 @@ impl Serialize for ContactColumns<'_> {
         if augmented {
             m.serialize_field("multiplier", &column(p, k, |r| Item2(r.multiplier)))?;
         }
+        m.serialize_field("force", &column(p, k, |r| Item2(r.force)))?;
         m.end()
     }
 }
@@ -354,6 +369,7 @@ mod tests {
             normal: [0.0, 1.0],
             tangent: [-1.0, 0.0],
             multiplier: [f64::NAN; 2],
+            force: [-0.1, 2.5],
         }
     }
 

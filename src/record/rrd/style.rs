@@ -171,6 +171,7 @@ mod tests {
             normal: [0.0, 1.0],
             tangent: [1.0, 0.0],
             multiplier: [f64::NAN; 2],
+            force: [0.5, 2.0],
         }
     }
 
