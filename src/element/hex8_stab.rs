@@ -20,7 +20,7 @@ fn held_by(mode: usize) -> Option<(usize, usize)> {
         return None;
     };
     let (i, j) = PAIRS[row];
-    (i != j).then(|| (if i == l { j } else { i }, l))
+    (i != j).then_some((if i == l { j } else { i }, l))
 }
 
 /// The penalties that hold the hourglass modes of an EAS hexahedron at a converged state `u`,
