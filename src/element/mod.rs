@@ -3,5 +3,7 @@
 pub mod body_force;
 mod eas_linear;
 pub mod fields;
+pub mod hex8;
 pub mod material;
+pub mod material3d;
 pub mod quad;
