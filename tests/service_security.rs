@@ -126,3 +126,43 @@ fn bad_ids_paths_bodies_and_scenes_get_clear_json_errors() {
     // nothing of this reached the catalogue
     assert_eq!(srv.get("/api/runs").1["total"], 0);
 }
+
+/// What another site's page could send through a visitor's browser: the types an HTML form
+/// sends are refused, and a preflight of a script's JSON request gets no CORS permission.
+#[test]
+fn another_sites_page_cannot_submit_through_a_visitors_browser() {
+    let dir = TempDir::new("svc-csrf");
+    let srv = Server::start(&dir.0.join("data"), &["--workers", "1"]);
+    for ty in [
+        "text/plain",
+        "application/x-www-form-urlencoded",
+        "multipart/form-data; boundary=x",
+    ] {
+        let mut res = ureq::post(format!("{}/api/runs", srv.url))
+            .config()
+            .http_status_as_error(false)
+            .build()
+            .header("Content-Type", ty)
+            .header("Origin", "http://elsewhere.example")
+            .send(r#"{"scene": "crossing"}"#)
+            .unwrap();
+        assert_eq!(res.status().as_u16(), 415, "{ty}");
+        let v: Value = res.body_mut().read_json().unwrap();
+        assert_eq!(error_code(&v), "bad-json");
+    }
+    let res = ureq::http::Request::options(format!("{}/api/runs", srv.url))
+        .header("Origin", "http://elsewhere.example")
+        .header("Access-Control-Request-Method", "POST")
+        .header("Access-Control-Request-Headers", "content-type")
+        .body(())
+        .unwrap();
+    let res = ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .build()
+        .new_agent()
+        .run(res)
+        .unwrap();
+    assert!(res.status().is_client_error(), "{}", res.status());
+    assert!(res.headers().keys().all(|k| !k.as_str().starts_with("access-control-")));
+    assert_eq!(srv.get("/api/runs").1["total"], 0);
+}

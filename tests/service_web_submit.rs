@@ -47,8 +47,14 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
     let dir = TempDir::new("svc-web-submit");
     let srv = Server::start(&dir.0.join("data"), &["--workers", "1", "--token", TOKEN]);
     let mut b = Browser::launch(&chrome, 1280, 900);
+    open_the_form(&mut b, &srv);
+    refused_submissions_stay_on_the_form(&mut b, &srv);
+    let id = submit_and_follow(&mut b, &srv);
+    listed_then_submitted_again(&mut b, &srv, &id);
+}
 
-    // the list, then the form through its link
+/// The table, then the form through its link; the built-in scenes are the service's.
+fn open_the_form(b: &mut Browser, srv: &Server) {
     b.navigate(&format!("{}/?token={TOKEN}", srv.url));
     b.wait_for("document.body.dataset.ready === '1'", 20, "document.body.innerText");
     b.click("#new-run");
@@ -58,7 +64,6 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
         "location.hash",
     );
 
-    // the built-in scenes are the service's
     let (_, scenes) = srv.get("/api/scenes");
     let names: Vec<&str> = scenes["scenes"]
         .as_array()
@@ -81,22 +86,26 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
         .find(|s| s["name"] == "crossing")
         .unwrap();
     assert_eq!(described, crossing["description"]);
+}
 
-    // a pasted scene with a TOML error: the service's message with the line and column
+/// A pasted scene with a TOML error gets the service's message with the line and column, a
+/// built-in scene with an unknown override the field's name; nothing is catalogued.
+fn refused_submissions_stay_on_the_form(b: &mut Browser, srv: &Server) {
     b.click("input[name=source][value=toml]");
     b.type_into("#scene-toml", "name = \"web\"\n[[body]]\nname = = 3\n");
-    let msg = submit_and_read_error(&mut b);
+    let msg = submit_and_read_error(b);
     assert!(msg.contains(".toml:3:8: extra `=`"), "{msg}");
-    picture(&mut b, "service-submit-error.png");
-
-    // a built-in scene with an unknown override
+    picture(b, "service-submit-error.png");
     b.click("input[name=source][value=builtin]");
     b.type_into("#sets", "contact.nope=1");
-    let msg = submit_and_read_error(&mut b);
+    let msg = submit_and_read_error(b);
     assert!(msg.contains("nope"), "{msg}");
     assert_eq!(srv.get("/api/runs").1["total"], 0, "nothing was catalogued");
+}
 
-    // the run: crossing with two overrides, followed live on its page
+/// `crossing` with two override lines (and a blank one), followed live on its page to
+/// `completed`; the run is the one the API makes of the same request. Its id.
+fn submit_and_follow(b: &mut Browser, srv: &Server) -> String {
     b.type_into("#sets", "stepping.increments=40\n\ncontact.eps_t=2.0e3\n");
     b.click("#submit-run");
     let hash = b.wait_for("location.hash.startsWith('#/runs/') && location.hash", 20, ERROR_BOX);
@@ -118,8 +127,12 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
         &json!({ "scene": "crossing", "set": ["stepping.increments=40", "contact.eps_t=2.0e3"] }),
     );
     assert_eq!((s, &again["id"], &again["existing"]), (200, &json!(id), &json!(true)));
+    id
+}
 
-    // listed as completed, once
+/// The table lists the run as completed, once; the form sent again shows the catalogued run
+/// and says so.
+fn listed_then_submitted_again(b: &mut Browser, srv: &Server, id: &str) {
     b.click("#run-view a[href='#/']");
     let row = format!("tr[data-id=\"{id}\"] .status");
     let listed = b.wait_for(
@@ -130,8 +143,6 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
     assert_eq!(listed, "completed");
     assert_eq!(b.eval("document.querySelectorAll('#runs tbody tr').length"), 1);
     assert_eq!(srv.get("/api/runs").1["total"], 1);
-
-    // the same request again: the page shows the catalogued run and says so
     b.click("#new-run");
     b.wait_for("!document.querySelector('#submit-view').hidden", 20, "location.hash");
     assert_eq!(
@@ -139,7 +150,7 @@ fn a_run_submitted_from_the_web_page_completes_and_is_listed() {
         true,
         "no stale error"
     );
-    picture(&mut b, "service-submit.png");
+    picture(b, "service-submit.png");
     b.click("#submit-run");
     b.wait_for(
         "!document.querySelector('#run-view').hidden && document.querySelector('#submit-notice').textContent.includes('catalogued already')",
