@@ -39,6 +39,14 @@ fn with_a_token_every_request_needs_it() {
     }
     let (s, _, _) = srv.bytes("/api/health?token=s3cret-token", &[]);
     assert_eq!(s, 200);
+    // the page (`/?token=`) loads its script and style sheet without the token: the same
+    // files for every service, holding no data
+    for path in ["/app.js", "/style.css"] {
+        let (s, _, h) = srv.bytes(path, &[]);
+        assert_eq!(s, 200, "{path}");
+        assert!(!h["content-type"].to_str().unwrap().contains("json"), "{path}");
+    }
+    assert_eq!(srv.bytes("/app.js/../api/runs", &[]).0, 401);
     let (code, out, err) = srv.client(&["runs", "--token", "s3cret-token"]);
     assert_eq!(code, 0, "{out}{err}");
     srv.token = None;
@@ -116,5 +124,45 @@ fn bad_ids_paths_bodies_and_scenes_get_clear_json_errors() {
     );
     assert_eq!((s, error_code(&v)), (400, "bad-request"));
     // nothing of this reached the catalogue
+    assert_eq!(srv.get("/api/runs").1["total"], 0);
+}
+
+/// What another site's page could send through a visitor's browser: the types an HTML form
+/// sends are refused, and a preflight of a script's JSON request gets no CORS permission.
+#[test]
+fn another_sites_page_cannot_submit_through_a_visitors_browser() {
+    let dir = TempDir::new("svc-csrf");
+    let srv = Server::start(&dir.0.join("data"), &["--workers", "1"]);
+    for ty in [
+        "text/plain",
+        "application/x-www-form-urlencoded",
+        "multipart/form-data; boundary=x",
+    ] {
+        let mut res = ureq::post(format!("{}/api/runs", srv.url))
+            .config()
+            .http_status_as_error(false)
+            .build()
+            .header("Content-Type", ty)
+            .header("Origin", "http://elsewhere.example")
+            .send(r#"{"scene": "crossing"}"#)
+            .unwrap();
+        assert_eq!(res.status().as_u16(), 415, "{ty}");
+        let v: Value = res.body_mut().read_json().unwrap();
+        assert_eq!(error_code(&v), "bad-json");
+    }
+    let res = ureq::http::Request::options(format!("{}/api/runs", srv.url))
+        .header("Origin", "http://elsewhere.example")
+        .header("Access-Control-Request-Method", "POST")
+        .header("Access-Control-Request-Headers", "content-type")
+        .body(())
+        .unwrap();
+    let res = ureq::Agent::config_builder()
+        .http_status_as_error(false)
+        .build()
+        .new_agent()
+        .run(res)
+        .unwrap();
+    assert!(res.status().is_client_error(), "{}", res.status());
+    assert!(res.headers().keys().all(|k| !k.as_str().starts_with("access-control-")));
     assert_eq!(srv.get("/api/runs").1["total"], 0);
 }

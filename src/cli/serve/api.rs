@@ -99,8 +99,6 @@ fn same(a: &[u8], b: &[u8]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
 }
 
-/// With `--token`, every request carries it: `Authorization: Bearer TOKEN`, or `?token=`
-/// (for links and the browser's event streams).
 /// Bodies read to their end before an oversized request is refused, at most this many
 /// times the body limit: a client still writing its body then reads the 413 instead of
 /// a broken pipe. Larger bodies are refused at once and their connection closed.
@@ -132,10 +130,16 @@ async fn refuse_oversized(State(svc): Svc, req: Request, next: Next) -> Response
     .into_response()
 }
 
+/// With `--token`, every request carries it: `Authorization: Bearer TOKEN`, or `?token=`
+/// (for links and the browser's event streams), but for the page's script and style sheet
+/// ([`web::PUBLIC`]), which the page (`/?token=`) loads without the token.
 async fn token_check(State(svc): Svc, req: Request, next: Next) -> Response {
     let Some(token) = &svc.token else {
         return next.run(req).await;
     };
+    if web::PUBLIC.contains(&req.uri().path()) {
+        return next.run(req).await;
+    }
     let header = req
         .headers()
         .get(axum::http::header::AUTHORIZATION)

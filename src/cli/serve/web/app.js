@@ -1,6 +1,7 @@
 // contrail serve: the web page. Plain JavaScript over the JSON API (schemas/openapi.json):
 // the runs table (#/), a run's page (#/runs/ID) and the comparison of two runs
-// (#/compare/A/B). Live updates come from the server-sent events of /api/events.
+// (#/compare/A/B), and the form that submits a run (#/submit). Live updates come from the
+// server-sent events of /api/events.
 "use strict";
 
 const query = new URLSearchParams(location.search);
@@ -135,8 +136,12 @@ async function showRun(id) {
   const prog = r.progress ? `increment ${r.progress.increment}, t = ${fmt(r.progress.t)} of ${fmt(r.progress.t_end)}, force ${fmt(r.progress.force)}, ${r.progress.cutbacks} cut-backs, ${r.progress.crossings} crossings` : "";
   const files = r.files || {};
   const link = (u, t) => u ? `<a href="${esc(withToken(u))}" download>${t}</a>` : "";
+  const notice = submitted && submitted.id === id ? (submitted.existing
+    ? "this scene with these overrides is catalogued already: here is that run (tick “solve it again” to re-run it)"
+    : `submitted from this page${liveUpdates ? "; followed live" : ""}`) : "";
   view.innerHTML = `
     <p><a href="#/">← all runs</a></p>
+    ${notice ? `<p class="notice" id="submit-notice">${esc(notice)}</p>` : ""}
     <div class="card"><h2 id="run-id">${esc(r.id)} <span class="status ${esc(r.status)}" id="run-status">${esc(r.status)}</span>${r.status === "running" ? statusCell(r).replace(/^<span class="status[^<]*<\/span>/, "") : ""}</h2>
       ${dl({ scene: esc(r.scene) + (r.sweep ? ` <span class="muted">(sweep ${esc(r.sweep)})</span>` : ""),
         parameters: `<span class="params">${esc(r.sets.join("  ")) || "<span class=muted>none</span>"}</span>`,
@@ -197,15 +202,82 @@ async function showCompare(a, b) {
     <div class="card"><h2>diff</h2>${diffHtml}</div></div>`;
 }
 
+// ---- the submit form (#/submit): POST /api/runs; the service checks the scene and overrides ----
+let scenesLoaded = null, submitted = null;
+const form = $("#submit-form");
+
+async function showSubmit() {
+  if (!scenesLoaded) {
+    scenesLoaded = api("/api/scenes").then((body) => {
+      $("#scene-select").innerHTML = body.scenes.map((s) =>
+        `<option value="${esc(s.name)}" title="${esc(s.description)}">${esc(s.name)}</option>`).join("");
+      return new Map(body.scenes.map((s) => [s.name, s.description]));
+    });
+    scenesLoaded.catch(() => { scenesLoaded = null; });
+  }
+  const descriptions = await scenesLoaded;
+  $("#scene-description").textContent = descriptions.get($("#scene-select").value) || "";
+  const own = form.elements.source.value === "toml";
+  $("#builtin-fields").hidden = own;
+  $("#toml-fields").hidden = !own;
+}
+
+// The request as `contrail submit` sends it: one override per non-empty line.
+function submitBody() {
+  const body = form.elements.source.value === "toml" ? { scene_toml: $("#scene-toml").value } : { scene: $("#scene-select").value };
+  body.set = $("#sets").value.split("\n").map((l) => l.trim()).filter((l) => l);
+  if ($("#rerun").checked) body.rerun = true;
+  return body;
+}
+
+function showSubmitError(message, hint) {
+  const box = $("#submit-error");
+  box.innerHTML = `<pre id="submit-message">${esc(message)}</pre>${hint ? `<span class="muted">hint: ${esc(hint)}</span>` : ""}`;
+  box.hidden = false;
+}
+
+async function submitRun(e) {
+  e.preventDefault();
+  const button = $("#submit-run");
+  $("#submit-error").hidden = true;
+  button.disabled = true;
+  $("#submit-state").textContent = "submitting…";
+  try {
+    const headers = { "Content-Type": "application/json" };
+    if (token) headers.Authorization = "Bearer " + token;
+    const res = await fetch("/api/runs", { method: "POST", headers, body: JSON.stringify(submitBody()) });
+    const body = await res.json().catch(() => null);
+    if (!res.ok) {
+      const err = body && body.error;
+      return showSubmitError(err ? err.message : `${res.status} ${res.statusText}`, err && err.hint);
+    }
+    submitted = { id: body.id, existing: body.existing };
+    location.hash = `#/runs/${encodeURIComponent(body.id)}`;
+  } catch (err) {
+    showSubmitError(`the service did not answer: ${err.message}`, "is it still running? a body over 16 MiB is cut off");
+  } finally {
+    button.disabled = false;
+    $("#submit-state").textContent = "";
+  }
+}
+
+form.addEventListener("submit", submitRun);
+form.addEventListener("change", (e) => { if (e.target.name === "source" || e.target.id === "scene-select") showSubmit(); });
+$("#scene-file").addEventListener("change", async (e) => {
+  const f = e.target.files[0];
+  if (f) $("#scene-toml").value = await f.text();
+});
+
 // ---- routing and live updates ----
 async function route() {
   const h = location.hash.replace(/^#\/?/, "").split("/").map(decodeURIComponent);
-  const show = (v) => ["list-view", "run-view", "compare-view"].forEach((x) => { $("#" + x).hidden = x !== v; });
+  const show = (v) => ["list-view", "run-view", "compare-view", "submit-view"].forEach((x) => { $("#" + x).hidden = x !== v; });
   closeStream();
   current = null;
   try {
     if (h[0] === "runs" && h[1]) { show("run-view"); await showRun(h[1]); }
     else if (h[0] === "compare" && h[1] && h[2]) { show("compare-view"); await showCompare(h[1], h[2]); }
+    else if (h[0] === "submit") { show("submit-view"); await showSubmit(); }
     else { show("list-view"); await loadRuns(); }
   } catch (e) {
     $("#main").insertAdjacentHTML("afterbegin", `<p class="error">${esc(e.message)}</p>`);
