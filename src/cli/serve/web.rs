@@ -2,11 +2,11 @@
 //! build step). The page reads the JSON API and follows `/api/events`.
 
 use axum::http::header;
+use axum::response::IntoResponse;
 
 /// The paths served without the token: the page's script and style sheet, the same for
 /// every service and holding no data (the page itself, `/`, and the API need the token).
 pub const PUBLIC: [&str; 2] = ["/app.js", "/style.css"];
-use axum::response::IntoResponse;
 
 pub async fn index() -> impl IntoResponse {
     (
