@@ -534,9 +534,9 @@ pub const TOUCH_TOLERANCE: f64 = 1e-12;
 
 /// Whether a point with gap `ζ` on a segment of metric `a11` penetrates the master beyond
 /// round-off (`ζ < −10⁻¹² · 2√a11`): the point is closed. A point that merely touches is
-/// open — it carries no force either way; whether the first correction of an increment
-/// should see it closed is decided by the solver from the motion (see
-/// `solver::active_set::touching_pushed_in`).
+/// open — it carries no force either way; which side of the normal kink it takes in the
+/// Newton matrix is the contact Newton's choice ([`decision::Kink`]: open, or resting
+/// where the open tangent is singular).
 pub fn penetrating(gap: f64, a11: f64) -> bool {
     gap < -TOUCH_TOLERANCE * 2.0 * a11.sqrt()
 }
@@ -550,8 +550,8 @@ pub const RESTING_TOLERANCE: f64 = 1e-6;
 /// Whether a point with gap `ζ` touches the master, `|ζ| ≤ 10⁻⁶ · 2√a11` (a zero-gap
 /// start: two bodies meshed against each other, a sheet resting on a rigid facet, a block
 /// drawn on an incline to the digits of its file). Such a point may be resting on the
-/// master: the solver asks the first correction of an increment whether it is
-/// (`solver::active_set::touching_pushed_in`).
+/// master: where the tangent with every such point open is singular (a body held only by
+/// what it rests on), the solver takes them resting ([`decision::Kink::Resting`]).
 pub fn touching(gap: f64, a11: f64) -> bool {
     gap.abs() <= RESTING_TOLERANCE * 2.0 * a11.sqrt()
 }
