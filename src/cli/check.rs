@@ -34,6 +34,9 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         problem.settings.stepping.increments,
         problem.settings.stepping.end
     )?;
+    for note in &m.notes {
+        outln!("  note: {note}")?;
+    }
     for r in &scene.rigid {
         if let Some(arc) = &r.arc {
             let side = ArcSide::of(arc.from_deg, arc.to_deg);

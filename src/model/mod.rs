@@ -85,6 +85,10 @@ pub struct Model {
     /// The load–displacement monitors, in scene order (the first is "the" monitor of
     /// summaries, plots and sweeps).
     pub monitors: Vec<Monitor>,
+    /// What building the model changed that the scene did not say (slave nodes moved onto
+    /// their master: [`crate::scene`]'s overclosure adjustment), one sentence each; a run
+    /// logs them first.
+    pub notes: Vec<String>,
 }
 
 impl Model {
@@ -95,6 +99,21 @@ impl Model {
 
     pub fn dof_count(&self) -> usize {
         2 * self.nodes.len()
+    }
+
+    /// The smallest element edge at each node (infinite at a node of no element).
+    pub fn smallest_edge_at_nodes(&self) -> Vec<f64> {
+        let mut h = vec![f64::INFINITY; self.nodes.len()];
+        for e in &self.elements {
+            for i in 0..4 {
+                let (a, b) = (e.nodes[i], e.nodes[(i + 1) % 4]);
+                let (p, q) = (self.nodes[a], self.nodes[b]);
+                let l = (p[0] - q[0]).hypot(p[1] - q[1]);
+                h[a] = h[a].min(l);
+                h[b] = h[b].min(l);
+            }
+        }
+        h
     }
 
     /// The boundary edges of body `body` (edges of exactly one of its elements), oriented

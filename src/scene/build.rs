@@ -267,12 +267,14 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         rigid: Vec::new(),
         contacts: Vec::new(),
         monitors: Vec::new(),
+        notes: Vec::new(),
     };
     steps::add_bodies(&mut cx, s, &mut m)?;
     steps::add_fixes(&cx, s, &mut m, end)?;
     steps::add_loads(&cx, s, &mut m, end)?;
     steps::add_rigid(&cx, s, &mut m, end)?;
     steps::add_contacts(&cx, s, &mut m)?;
+    super::overclosure::adjust_overclosures(&mut m, s);
     super::initial_contact::refuse_initial_overlaps(&cx, &m, s)?;
     steps::add_monitors(&cx, s, &mut m)?;
     Ok(m)

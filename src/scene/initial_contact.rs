@@ -121,12 +121,12 @@ pub(super) fn refuse_initial_overlaps(cx: &Ctx, m: &Model, s: &SceneFile) -> Res
             o.position[1]
         ),
         &format!(
-            "a rigid outline is listed with the rigid body on the LEFT of the direction of travel; `contrail check` shows the side of each. If `{rigid}` is listed the other way round, list its points (and pieces) in the reverse order; if the bodies really overlap at the start, move them apart, or set allow_initial_penetration = true on the pair"
+            "a rigid outline is listed with the rigid body on the LEFT of the direction of travel; `contrail check` shows the side of each. If `{rigid}` is listed the other way round, list its points (and pieces) in the reverse order; if the bodies really overlap at the start, move them apart, or set allow_initial_penetration = true on the pair (overlaps up to 1 % of the element at the interface are moved onto the master unless adjust_overclosure = false)"
         ),
     ))
 }
 
-fn model_size(m: &Model) -> f64 {
+pub(super) fn model_size(m: &Model) -> f64 {
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
     for x in &m.nodes {
         for c in 0..2 {

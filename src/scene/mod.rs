@@ -10,6 +10,7 @@ pub mod fillet;
 pub mod initial_contact;
 mod mesh;
 pub mod monitors;
+mod overclosure;
 mod overrides;
 pub mod types;
 pub mod validate;

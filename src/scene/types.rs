@@ -420,6 +420,13 @@ pub struct ContactSpec {
     /// refused: that is almost always an outline listed the wrong way round.
     #[serde(default)]
     pub allow_initial_penetration: bool,
+    /// Slave nodes that start inside the master by at most 1 % of the smaller element at the
+    /// interface (meshes that overlap by round-off or by the digits they were written to) are
+    /// moved onto the master, strain-free, and the run says so (`true`, the default); deeper
+    /// overlaps are refused as before. `false`: every overlap beyond round-off is left as it
+    /// is (refused against a rigid master unless `allow_initial_penetration`).
+    #[serde(default = "yes")]
+    pub adjust_overclosure: bool,
     /// Interpolation of a deformable master face: `"none"` (straight segments, the default),
     /// `"hermite"` (C1 cubic segments through the nodes, tangents from the neighbours) or
     /// `"bezier"` (C1 quadratic Bézier arcs between the segments' midpoints, the nodes as

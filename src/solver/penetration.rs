@@ -18,17 +18,7 @@ pub const DEEP_PENETRATION: f64 = 0.1;
 
 /// The smallest element edge at each node (infinite at a node of no element).
 pub fn node_sizes(model: &Model) -> Vec<f64> {
-    let mut h = vec![f64::INFINITY; model.nodes.len()];
-    for e in &model.elements {
-        for i in 0..4 {
-            let (a, b) = (e.nodes[i], e.nodes[(i + 1) % 4]);
-            let (p, q) = (model.nodes[a], model.nodes[b]);
-            let l = (p[0] - q[0]).hypot(p[1] - q[1]);
-            h[a] = h[a].min(l);
-            h[b] = h[b].min(l);
-        }
-    }
-    h
+    model.smallest_edge_at_nodes()
 }
 
 /// The deepest penetration of an increment, relative to the local element size.

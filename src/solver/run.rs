@@ -129,6 +129,9 @@ pub fn run(
     let started = Instant::now();
     let model = &problem.model;
     obs.start(model, info)?;
+    for note in &model.notes {
+        log(obs, LogLevel::Warning, 0, 0.0, note.clone())?;
+    }
     let result = drive(model, &problem.settings, obs, stop, started);
     let outcome = match &result {
         Ok(s) => Outcome::Completed {
