@@ -9,6 +9,7 @@ pub mod builtin;
 pub mod fillet;
 pub mod initial_contact;
 mod mesh;
+pub mod mesh_spec;
 pub mod monitors;
 mod overrides;
 pub mod types;
