@@ -46,17 +46,30 @@ fn drag(to: f64, expected: f64) -> Vec<f64> {
         // the left face's mean displacement along d is the prescribed drag
         let [mx, my] = [&inc.monitors[0], &inc.monitors[1]].map(|m| m.displacement);
         let v = if inc.t <= 1.0 { 0.0 } else { to * (inc.t - 1.0) / 2.0 };
-        assert!((mx * c + my * s - v).abs() <= 1e-12, "t = {}: u · d = {} vs {v}", inc.t, mx * c + my * s);
+        assert!(
+            (mx * c + my * s - v).abs() <= 1e-12,
+            "t = {}: u · d = {} vs {v}",
+            inc.t,
+            mx * c + my * s
+        );
         // the monitors' forces are the reactions of the fixed set
         assert!((inc.monitors[0].force - rx).abs() <= 1e-9 * W && (inc.monitors[1].force - ry).abs() <= 1e-9 * W);
         if inc.t > 1.0 && points.iter().all(|p| p.state == ContactState::Slip) {
             let rel = (along - expected) / expected;
             println!("t = {:.3}: drag {along:.10} vs {expected:.10}: {rel:+.2e}", inc.t);
-            assert!(rel.abs() <= 1e-6, "t = {}: drag {along} vs W (sin α ± μ cos α) = {expected}", inc.t);
+            assert!(
+                rel.abs() <= 1e-6,
+                "t = {}: drag {along} vs W (sin α ± μ cos α) = {expected}",
+                inc.t
+            );
             at_sliding.push(along);
         }
     }
-    assert!(at_sliding.len() >= 10, "only {} increments at gross sliding", at_sliding.len());
+    assert!(
+        at_sliding.len() >= 10,
+        "only {} increments at gross sliding",
+        at_sliding.len()
+    );
     at_sliding
 }
 

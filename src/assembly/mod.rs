@@ -634,7 +634,9 @@ impl Assembler {
             }
         }
         for (k, s) in self.skew.dofs.iter().enumerate() {
-            let f = self.skew.residual(k, [self.r_full[2 * s.node], self.r_full[2 * s.node + 1]]);
+            let f = self
+                .skew
+                .residual(k, [self.r_full[2 * s.node], self.r_full[2 * s.node + 1]]);
             out[s.eqs[0]] = f[0];
             out[s.eqs[1]] = f[1];
         }

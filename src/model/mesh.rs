@@ -171,7 +171,13 @@ pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements
 /// element: the sweep's fraction is `around[i] / na`) and `through[j]` (from 0 at
 /// `radii[0]` to `nr` at `radii[1]`), e.g. from [`axis_coords`] with `len = n`; `i` and `j`
 /// give the uniform mesh (same bits as [`annulus`] always gave).
-pub fn annulus_on(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], around: &[f64], through: &[f64]) -> RectMesh {
+pub fn annulus_on(
+    centre: [f64; 2],
+    radii: [f64; 2],
+    angles_deg: [f64; 2],
+    around: &[f64],
+    through: &[f64],
+) -> RectMesh {
     let [na, nr] = [around.len() - 1, through.len() - 1];
     let (t0, t1) = (angles_deg[0].to_radians(), angles_deg[1].to_radians());
     let closed = ((t1 - t0).abs() - std::f64::consts::TAU).abs() < 1e-9;

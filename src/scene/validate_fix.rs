@@ -19,7 +19,12 @@ pub(super) fn check(c: &Check, s: &SceneFile, ext: &mut Extent) -> R {
         let p = [P::K("load"), P::I(i)];
         let key = format!("load.{}", l.name.clone().unwrap_or_else(|| i.to_string()));
         c.selection(&sub(&p, "nodes"), &format!("{key}.nodes"), &l.nodes)?;
-        c.ramp(&sub(&p, "total"), &format!("{key}.total"), &l.total, &mut Extent::default())?;
+        c.ramp(
+            &sub(&p, "total"),
+            &format!("{key}.total"),
+            &l.total,
+            &mut Extent::default(),
+        )?;
     }
     Ok(())
 }

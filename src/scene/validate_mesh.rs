@@ -1,7 +1,7 @@
 //! Checks of a body's `[body.mesh]`: sizes, element counts, grading and its bias and focus,
 //! rotation; each returns a lower bound of the mesh's smallest element edge.
 
-use super::{sub, Check, Extent, P, MAX_COORDINATE};
+use super::{sub, Check, Extent, MAX_COORDINATE, P};
 use crate::scene::types::{Bias, MeshSpec, Rotation};
 use crate::scene::SceneError;
 
@@ -19,12 +19,14 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             rotate,
         } => {
             c.point(&sub(mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
-            for k in 0..2 {
-                c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), size[k])?;
+            for (k, s) in size.iter().enumerate() {
+                c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), *s)?;
             }
             let span = [0, 1].map(|k| [origin[k], origin[k] + size[k]]);
             let f = axes(c, mesh, key, elements, grading, bias, *focus, span)?;
-            let h = (0..2).map(|k| size[k] / elements[k] as f64 * f[k]).fold(f64::INFINITY, f64::min);
+            let h = (0..2)
+                .map(|k| size[k] / elements[k] as f64 * f[k])
+                .fold(f64::INFINITY, f64::min);
             let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
                 .map(|[a, b]| [origin[0] + a * size[0], origin[1] + b * size[1]]);
             let reach = match rotate {
@@ -110,7 +112,10 @@ fn axes(
                     &sub(mesh, "focus"),
                     &format!("{key}.mesh.focus[{k}]"),
                     at,
-                    &format!("must lie strictly inside the mesh along that axis ({} .. {})", span[k][0], span[k][1]),
+                    &format!(
+                        "must lie strictly inside the mesh along that axis ({} .. {})",
+                        span[k][0], span[k][1]
+                    ),
                     "give an interior point to refine towards, or remove `focus` to refine the middle",
                 ));
             }
