@@ -2,6 +2,7 @@
 //! contributions scattered into the full residual and the free-DOF sparse tangent.
 
 pub mod pacing;
+pub mod skew;
 pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
@@ -49,8 +50,12 @@ pub struct DofMap {
     /// Equation of each DOF, or `None` when prescribed.
     pub eq: Vec<Option<usize>>,
     pub n_free: usize,
-    /// Prescribed DOFs in the order of [`Model::prescribed`].
+    /// Prescribed DOFs in the order of [`Model::prescribed`], then the two DOFs of each
+    /// skew-supported node ([`Model::skew`]; free equations, but their residual along the
+    /// support is a reaction, so sums of reactions include them).
     pub prescribed: Vec<usize>,
+    /// Per DOF: in [`Self::prescribed`] (fixed, or of a skew-supported node).
+    held: Vec<bool>,
 }
 
 impl DofMap {
@@ -68,11 +73,21 @@ impl DofMap {
                 k += 1;
             }
         }
+        let skew = model.skew.iter().flat_map(|s| [2 * s.node, 2 * s.node + 1]);
+        let prescribed: Vec<usize> = model.prescribed.iter().map(|p| p.dof).chain(skew).collect();
+        let mut held = vec![false; n];
+        prescribed.iter().for_each(|&d| held[d] = true);
         DofMap {
             eq,
             n_free: k,
-            prescribed: model.prescribed.iter().map(|p| p.dof).collect(),
+            prescribed,
+            held,
         }
+    }
+
+    /// Whether DOF `d` carries a reaction: prescribed, or of a skew-supported node.
+    pub fn is_prescribed(&self, d: usize) -> bool {
+        self.held[d]
     }
 }
 
@@ -134,6 +149,8 @@ pub struct Assembler {
     pub pacing: pacing::Pacing,
     /// Per-element outputs of one block of the team's path (allocated once).
     block: Vec<ElementOut>,
+    /// The skew supports, held in their nodes' local frames ([`skew`]).
+    pub skew: skew::Skew,
 }
 
 /// Models with at least this many elements may share their element kernels with a team of
@@ -213,13 +230,19 @@ impl Assembler {
             .iter()
             .map(|el| element_eqs(&dofs, &el.nodes).iter().flatten().copied().collect());
         let matrix = SparseMatrix::new(dofs.n_free, &mut groups);
+        let skew = skew::Skew::new(model, &dofs.eq, dofs.n_free);
         let mut linear = LinearSolve::default();
+        // a skew node's equations are in its local frame: not in the near-null space
+        let turned: std::collections::HashSet<usize> = skew.dofs.iter().map(|s| s.node).collect();
         linear.set_nodes(
             model
                 .nodes
                 .iter()
                 .enumerate()
-                .map(|(i, x)| ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x))
+                .map(|(i, x)| match turned.contains(&i) {
+                    true => ([None, None], *x),
+                    false => ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x),
+                })
                 .collect(),
         );
         let mut a = Assembler {
@@ -245,6 +268,7 @@ impl Assembler {
             team: None,
             pacing: pacing::Pacing::default(),
             block: Vec::new(),
+            skew,
         };
         a.build_slots(model);
         a
@@ -484,12 +508,22 @@ impl Assembler {
             self.r_full[l.dof] -= f;
             self.r_abs[l.dof] += f.abs();
         }
+        if !self.skew.is_empty() {
+            self.skew.update_gaps(model, u, t);
+            if with_tangent {
+                self.skew.transform(&mut self.matrix);
+            }
+        }
         Ok(())
     }
 
-    /// Solve `K x = b` in place with the assembled tangent.
+    /// Solve `K x = b` in place with the assembled tangent (`b` and `x` in global components;
+    /// at skew-supported nodes the solve runs in their local frames, [`skew`]).
     pub fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
-        self.linear.solve(&self.matrix, b)
+        self.skew.to_local(b);
+        self.linear.solve(&self.matrix, b)?;
+        self.skew.to_global(b);
+        Ok(())
     }
 
     /// Return the matrix to the elements' pattern when the entries contact added to it were
@@ -573,20 +607,38 @@ impl Assembler {
     /// residual of the mixed system — equilibrium with the contact force unknowns at the
     /// free DOFs, and the complementarity residuals of every contact point (`contact`, as
     /// evaluated by that assembly; see [`crate::contact::decision`]).
+    /// At a skew-supported node the pair of equilibrium residuals is that of
+    /// [`skew::Skew::residual`] (constraint along `n`, equilibrium along `t`).
     pub fn merit(&self, contact: &ContactSystem) -> f64 {
         let eq: f64 = (self.dofs.eq.iter().zip(self.r_full.iter().zip(&self.r_forces)))
-            .filter(|(e, _)| e.is_some())
-            .map(|(_, (r, f))| (r + f) * (r + f))
+            .enumerate()
+            .filter(|(d, (e, _))| e.is_some() && !self.skew.turns(*d))
+            .map(|(_, (_, (r, f)))| (r + f) * (r + f))
             .sum();
-        eq + contact.complementarity2()
+        let skew: f64 = (self.skew.dofs.iter().enumerate())
+            .map(|(k, s)| {
+                let [x, y] = [2 * s.node, 2 * s.node + 1].map(|d| self.r_full[d] + self.r_forces[d]);
+                let f = self.skew.residual(k, [x, y]);
+                f[0] * f[0] + f[1] * f[1]
+            })
+            .sum();
+        eq + skew + contact.complementarity2()
     }
 
-    /// Residual restricted to the free equations.
+    /// Residual restricted to the free equations (at a skew-supported node: the constraint
+    /// residual along its direction, equilibrium across it, [`skew::Skew::residual`]).
     pub fn free_residual(&self, out: &mut [f64]) {
         for (d, e) in self.dofs.eq.iter().enumerate() {
             if let Some(e) = e {
                 out[*e] = self.r_full[d];
             }
+        }
+        for (k, s) in self.skew.dofs.iter().enumerate() {
+            let f = self
+                .skew
+                .residual(k, [self.r_full[2 * s.node], self.r_full[2 * s.node + 1]]);
+            out[s.eqs[0]] = f[0];
+            out[s.eqs[1]] = f[1];
         }
     }
 }

@@ -36,17 +36,88 @@ pub fn graded_coords(len: f64, n: usize, ratio: f64) -> Vec<f64> {
     c
 }
 
+/// How the elements along one axis of a structured mesh are sized (`n` elements on
+/// `[0, len]`); each variant's `ratio` compares element sizes, so 1 is uniform.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AxisGrading {
+    /// Geometric from the first to the last element: `ratio` = last / first.
+    End(f64),
+    /// Symmetric about the middle, each element's size `q^k` with `k` its distance in
+    /// elements from the nearer end: `ratio` = middle / end (> 1: fine at both ends).
+    Both(f64),
+    /// Symmetric about the middle, fine there: `ratio` = end / middle (the inverse of
+    /// [`AxisGrading::Both`]).
+    Centre(f64),
+    /// Fine at the interior point `at` (`0 < at < len`), a node there: the elements split
+    /// between the two sides in proportion to their lengths (at least one each), each side
+    /// geometric towards `at` with `ratio` = element at the end / element at `at`.
+    At { ratio: f64, at: f64 },
+}
+
+/// Node coordinates (`n + 1`, from 0 to `len`) of `n` elements on `[0, len]` sized by `g`.
+pub fn axis_coords(len: f64, n: usize, g: AxisGrading) -> Vec<f64> {
+    match g {
+        AxisGrading::End(ratio) => graded_coords(len, n, ratio),
+        AxisGrading::Both(ratio) => symmetric_coords(len, n, ratio),
+        AxisGrading::Centre(ratio) => symmetric_coords(len, n, 1.0 / ratio),
+        AxisGrading::At { ratio, at } if n >= 2 && at > 0.0 && at < len => {
+            let n1 = ((n as f64 * at / len).round() as usize).clamp(1, n - 1);
+            let left = graded_coords(at, n1, 1.0 / ratio);
+            let right = graded_coords(len - at, n - n1, ratio);
+            let mut c = left;
+            c.extend(right[1..].iter().map(|x| at + x));
+            c[n] = len;
+            c
+        }
+        AxisGrading::At { .. } => graded_coords(len, n, 1.0),
+    }
+}
+
+/// Element sizes `∝ q^min(i, n−1−i)` with `q = ratio^(1/m)`, `m = ⌊(n−1)/2⌋`: the middle
+/// element(s) `ratio` times the end ones.
+fn symmetric_coords(len: f64, n: usize, ratio: f64) -> Vec<f64> {
+    let m = n.saturating_sub(1) / 2;
+    let q = if m > 0 { ratio.powf(1.0 / m as f64) } else { 1.0 };
+    let w: Vec<f64> = (0..n).map(|i| q.powi(i.min(n - 1 - i) as i32)).collect();
+    let total: f64 = w.iter().sum();
+    let mut c = Vec::with_capacity(n + 1);
+    c.push(0.0);
+    let mut acc = 0.0;
+    for wi in &w {
+        acc += wi;
+        c.push(len * acc / total);
+    }
+    c[n] = len;
+    c
+}
+
+/// Turn `nodes` by `angle_deg` (counter-clockwise) about `about`: `x' = p + Q(θ)(x − p)`.
+/// A rotation keeps quads counter-clockwise and faces' orientation.
+pub fn rotate(nodes: &mut [[f64; 2]], angle_deg: f64, about: [f64; 2]) {
+    let (s, c) = angle_deg.to_radians().sin_cos();
+    for x in nodes {
+        let (dx, dy) = (x[0] - about[0], x[1] - about[1]);
+        *x = [about[0] + c * dx - s * dy, about[1] + s * dx + c * dy];
+    }
+}
+
 impl RectMesh {
     /// `origin` is the bottom-left corner; `grading = [rx, ry]` is the ratio of last to first
     /// element size along x and y (1 = uniform).
     pub fn new(origin: [f64; 2], size: [f64; 2], elements: [usize; 2], grading: [f64; 2]) -> Self {
-        let [nx, ny] = elements;
-        let xs = graded_coords(size[0], nx, grading[0]);
-        let ys = graded_coords(size[1], ny, grading[1]);
+        let xs = graded_coords(size[0], elements[0], grading[0]);
+        let ys = graded_coords(size[1], elements[1], grading[1]);
+        Self::on_grid(origin, &xs, &ys)
+    }
+
+    /// The mesh of the grid `origin + (xs[i], ys[j])` (each list increasing from 0, one more
+    /// entry than elements).
+    pub fn on_grid(origin: [f64; 2], xs: &[f64], ys: &[f64]) -> Self {
+        let (nx, ny) = (xs.len() - 1, ys.len() - 1);
         let id = |i: usize, j: usize| j * (nx + 1) + i;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
-        for y in &ys {
-            for x in &xs {
+        for y in ys {
+            for x in xs {
                 nodes.push([origin[0] + x, origin[1] + y]);
             }
         }
@@ -91,16 +162,32 @@ impl RectMesh {
 /// closed ring: the last column of nodes is the first (`start` and `end` name the same
 /// nodes, and there are no `start` and `end` faces), so the ring is not cut along a seam.
 pub fn annulus(centre: [f64; 2], radii: [f64; 2], angles_deg: [f64; 2], elements: [usize; 2]) -> RectMesh {
-    let [na, nr] = elements;
+    let around: Vec<f64> = (0..=elements[0]).map(|i| i as f64).collect();
+    let through: Vec<f64> = (0..=elements[1]).map(|j| j as f64).collect();
+    annulus_on(centre, radii, angles_deg, &around, &through)
+}
+
+/// [`annulus`] with the nodes at `around[i]` (from 0 to `na`, in units of a uniform
+/// element: the sweep's fraction is `around[i] / na`) and `through[j]` (from 0 at
+/// `radii[0]` to `nr` at `radii[1]`), e.g. from [`axis_coords`] with `len = n`; `i` and `j`
+/// give the uniform mesh (same bits as [`annulus`] always gave).
+pub fn annulus_on(
+    centre: [f64; 2],
+    radii: [f64; 2],
+    angles_deg: [f64; 2],
+    around: &[f64],
+    through: &[f64],
+) -> RectMesh {
+    let [na, nr] = [around.len() - 1, through.len() - 1];
     let (t0, t1) = (angles_deg[0].to_radians(), angles_deg[1].to_radians());
     let closed = ((t1 - t0).abs() - std::f64::consts::TAU).abs() < 1e-9;
     let columns = if closed { na } else { na + 1 };
     let id = |i: usize, j: usize| j * columns + i % columns;
     let mut nodes = Vec::with_capacity(columns * (nr + 1));
-    for j in 0..=nr {
-        let r = radii[0] + (radii[1] - radii[0]) * j as f64 / nr as f64;
-        for i in 0..columns {
-            let t = t0 + (t1 - t0) * i as f64 / na as f64;
+    for &b in through {
+        let r = radii[0] + (radii[1] - radii[0]) * b / nr as f64;
+        for &a in &around[..columns] {
+            let t = t0 + (t1 - t0) * a / na as f64;
             nodes.push([centre[0] + r * t.cos(), centre[1] + r * t.sin()]);
         }
     }

@@ -42,6 +42,18 @@ pub struct Prescribed {
     pub ramp: Ramp,
 }
 
+/// Prescribed displacement of one node along a unit direction only (a skew support):
+/// `u · n = v(t)` with `n = direction`, the component along `t = (−n_y, n_x)` free. The
+/// assembler holds it by the classical transformation of the node's two DOFs into the frame
+/// `(n, t)` ([`crate::assembly::skew`]); its reaction is the node's internal force along `n`.
+#[derive(Debug, Clone)]
+pub struct SkewPrescribed {
+    pub node: usize,
+    /// Unit vector `n` along which the displacement is prescribed.
+    pub direction: [f64; 2],
+    pub ramp: Ramp,
+}
+
 /// Dead nodal force on one degree of freedom.
 #[derive(Debug, Clone)]
 pub struct NodalLoad {
@@ -79,6 +91,9 @@ pub struct Model {
     pub elements: Vec<Element>,
     pub bodies: Vec<Body>,
     pub prescribed: Vec<Prescribed>,
+    /// Displacements prescribed along a direction (skew supports), at most one per node and
+    /// on nodes without a [`Prescribed`] DOF.
+    pub skew: Vec<SkewPrescribed>,
     pub loads: Vec<NodalLoad>,
     pub rigid: Vec<RigidBody>,
     pub contacts: Vec<ContactPair>,

@@ -9,7 +9,7 @@ use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
     chain_neighbours, Body, ContactPair, Element, Enforcement, Master, Model, Monitor, MonitorTarget, NodalLoad, Piece,
-    Prescribed, Ramp, RigidBody, RigidShape, Slave, Smoothing,
+    Prescribed, Ramp, RigidBody, RigidShape, SkewPrescribed, Slave, Smoothing,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -263,6 +263,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         elements: Vec::new(),
         bodies: Vec::new(),
         prescribed: Vec::new(),
+        skew: Vec::new(),
         loads: Vec::new(),
         rigid: Vec::new(),
         contacts: Vec::new(),

@@ -71,20 +71,43 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
     Ok(())
 }
 
-/// The prescribed displacements (`[[fix]]`); a component prescribed twice is refused.
+/// The prescribed displacements (`[[fix]]`): global components, or a skew support along a
+/// `direction` (made unit). A component prescribed twice is refused, and so is a node with a
+/// skew support and any other fix (its two DOFs are turned into the support's frame).
 pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
     let mut fixed = vec![false; m.dof_count()];
-    for f in &s.fixes {
+    let mut skew = vec![false; m.nodes.len()];
+    let label = |i: usize, f: &FixSpec| f.name.clone().map_or(format!("[[fix]] {i}"), |n| format!("fix `{n}`"));
+    for (i, f) in s.fixes.iter().enumerate() {
         let bi = body_index(cx, m, &f.body)?;
         for n in select(cx, m, bi, &f.nodes)? {
+            let twice = |what: &str| {
+                cx.err(
+                    f.name.as_deref().unwrap_or(&f.body),
+                    format!("{}: node {n} of `{}` {what}", label(i, f), f.body),
+                    "remove the overlap between [[fix]] entries (a skew support holds a node alone: fix both components with components = [\"x\", \"y\"] instead)",
+                )
+            };
+            if skew[n] {
+                return Err(twice("already has a skew support"));
+            }
+            if let Some(d) = f.direction {
+                if fixed[2 * n] || fixed[2 * n + 1] {
+                    return Err(twice("already has a prescribed component"));
+                }
+                skew[n] = true;
+                let len = d[0].hypot(d[1]);
+                m.skew.push(SkewPrescribed {
+                    node: n,
+                    direction: [d[0] / len, d[1] / len],
+                    ramp: ramp(&f.value, end),
+                });
+                continue;
+            }
             for &c in &f.components {
                 let dof = 2 * n + comp(c);
                 if fixed[dof] {
-                    return Err(cx.err(
-                        &f.body,
-                        format!("node {n} component {c:?} of `{}` is prescribed twice", f.body),
-                        "remove the overlap between [[fix]] entries",
-                    ));
+                    return Err(twice(&format!("component {c:?} is prescribed twice")));
                 }
                 fixed[dof] = true;
                 m.prescribed.push(Prescribed {

@@ -1,10 +1,10 @@
 //! The mesh of one body: generated (`rectangle`) or read from a Gmsh file (`gmsh`, resolved
 //! relative to the scene file, or among the files shipped with a built-in scene).
 
-use super::types::{BodySpec, MeshSpec};
+use super::types::{Bias, BodySpec, MeshSpec};
 use super::{builtin, locate, SceneError, SceneSource};
 use crate::model::gmsh::{read_gmsh, GmshError};
-use crate::model::mesh::RectMesh;
+use crate::model::mesh::{annulus_on, axis_coords, rotate, RectMesh};
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -94,6 +94,13 @@ fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneEr
     })
 }
 
+/// Node coordinates along one axis of a structured mesh: `n` elements on `[0, len]` graded
+/// by `ratio` with `bias` (`at`: the focus from the axis' start, used by `"centre"` only).
+fn axis(len: f64, n: usize, ratio: f64, bias: Bias, at: Option<f64>) -> Vec<f64> {
+    let at = at.filter(|_| bias == Bias::Centre);
+    axis_coords(len, n, bias.axis(ratio, at))
+}
+
 /// The mesh of a body.
 pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, SceneError> {
     let invalid = |message: String, hint: &str| SceneError::Invalid {
@@ -108,6 +115,9 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             size,
             elements,
             grading,
+            bias,
+            focus,
+            rotate: turn,
         } => {
             if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
                 return Err(invalid(
@@ -115,7 +125,13 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
                     "fix [body.mesh]",
                 ));
             }
-            let m = RectMesh::new(*origin, *size, *elements, *grading);
+            let at = |k: usize| focus.map(|f| f[k] - origin[k]);
+            let xs = axis(size[0], elements[0], grading[0], bias[0], at(0));
+            let ys = axis(size[1], elements[1], grading[1], bias[1], at(1));
+            let mut m = RectMesh::on_grid(*origin, &xs, &ys);
+            if let Some(r) = turn {
+                rotate(&mut m.nodes, r.angle_deg, r.about.unwrap_or(*origin));
+            }
             BodyMesh {
                 nodes: m.nodes,
                 quads: m.quads,
@@ -129,6 +145,9 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             radius,
             angle_deg,
             elements,
+            grading,
+            bias,
+            focus,
         } => {
             let ok = elements[0] > 0
                 && elements[1] > 0
@@ -142,7 +161,12 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
                     "fix [body.mesh]",
                 ));
             }
-            let m = crate::model::mesh::annulus(*centre, *radius, *angle_deg, *elements);
+            // in units of a uniform element: the focus as a fraction of the sweep and thickness
+            let [na, nr] = elements.map(|e| e as f64);
+            let at = |k: usize, from: f64, to: f64| focus.map(|f| (f[k] - from) / (to - from) * [na, nr][k]);
+            let around = axis(na, elements[0], grading[0], bias[0], at(0, angle_deg[0], angle_deg[1]));
+            let through = axis(nr, elements[1], grading[1], bias[1], at(1, radius[0], radius[1]));
+            let m = annulus_on(*centre, *radius, *angle_deg, &around, &through);
             BodyMesh {
                 nodes: m.nodes,
                 quads: m.quads,

@@ -9,6 +9,7 @@ pub mod builtin;
 pub mod fillet;
 pub mod initial_contact;
 mod mesh;
+pub mod mesh_spec;
 pub mod monitors;
 mod overclosure;
 mod overrides;
@@ -148,12 +149,13 @@ pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneEr
             message,
         })?;
     }
+    let names = table.clone();
     toml::Value::Table(table)
         .try_into()
         .map_err(|e: toml::de::Error| SceneError::Override {
             origin: source.origin.clone(),
             set: sets.join(" --set "),
-            message: e.message().to_string(),
+            message: overrides::unknown_name(&names, sets, e.message()).unwrap_or_else(|| e.message().to_string()),
         })
 }
 

@@ -22,6 +22,31 @@ fn parse_value(raw: &str) -> Value {
         .unwrap_or_else(|| Value::String(raw.to_string()))
 }
 
+/// After the overrides, the scene's "unknown field `X`" may come from a `--set T.X.key=…`
+/// meant for an entry named `X` of the array of tables `T` that has no such entry (the path
+/// then set `X.key` in every entry): the message saying so, with the names `T` has.
+pub fn unknown_name(root: &Table, sets: &[String], message: &str) -> Option<String> {
+    let field = message.split("unknown field `").nth(1)?.split('`').next()?;
+    sets.iter().find_map(|set| {
+        let path = set.split_once('=')?.0.trim();
+        let segs: Vec<&str> = path.split('.').collect();
+        let (table, name) = (*segs.first()?, *segs.get(1)?);
+        let items = root.get(table)?.as_array()?;
+        if name != field || segs.len() < 3 {
+            return None;
+        }
+        let names: Vec<&str> = items.iter().filter_map(|it| it.get("name")?.as_str()).collect();
+        Some(format!(
+            "`{path}`: no [[{table}]] is named `{name}` (named: {}; or give its index, {table}.0.…)",
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                names.join(", ")
+            }
+        ))
+    })
+}
+
 /// Apply one `key.path=value` override.
 pub fn apply_override(root: &mut Table, set: &str) -> Result<(), String> {
     let (path, raw) = set

@@ -7,6 +7,8 @@ use crate::settings::{NewtonSettings, Stepping};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+pub use super::mesh_spec::{Bias, MeshSpec, Rotation};
+
 /// A whole scene.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -76,45 +78,6 @@ pub struct BodySpec {
 
 fn default_element() -> ElementKind {
     ElementKind::Q4EasSafe
-}
-
-/// Mesh generators.
-#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum MeshSpec {
-    /// Structured mesh of the rectangle `origin .. origin + size`.
-    Rectangle {
-        origin: [f64; 2],
-        size: [f64; 2],
-        /// Elements along x and y.
-        elements: [usize; 2],
-        /// Ratio of the last to the first element size along x and y (default 1 = uniform).
-        #[serde(default = "unit_grading")]
-        grading: [f64; 2],
-    },
-    /// Structured mesh of the ring sector `radius[0] ≤ r ≤ radius[1]`,
-    /// `angle_deg[0] ≤ θ ≤ angle_deg[1]` about `centre` (a belt lying on a cylinder); node
-    /// sets and faces `inner`, `outer`, `start`, `end` (and `all`).
-    Annulus {
-        centre: [f64; 2],
-        /// Inner and outer radius.
-        radius: [f64; 2],
-        /// Start and end angle, degrees (counter-clockwise from +x).
-        angle_deg: [f64; 2],
-        /// Elements around and through.
-        elements: [usize; 2],
-    },
-    /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
-    /// are the body's node sets, its physical curves on the boundary its faces.
-    Gmsh {
-        /// Path of the `.msh` file, relative to the scene file (for a built-in scene: a
-        /// file shipped with it, e.g. `half-disc.msh`).
-        file: String,
-    },
-}
-
-fn unit_grading() -> [f64; 2] {
-    [1.0, 1.0]
 }
 
 /// Material model and its elastic constants.
@@ -198,13 +161,22 @@ pub enum Component {
     Y,
 }
 
-/// Prescribed displacement of some components of a node set.
+/// Prescribed displacement of a node set: of some global components (`components`), or
+/// along a direction only (`direction`: a skew support, the component across it free).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FixSpec {
+    /// Name, unique among the fixes: `--set fix.NAME.value=…` (the index form
+    /// `fix.0.value` works too).
+    pub name: Option<String>,
     pub body: String,
     pub nodes: NodeSelection,
+    /// Global components prescribed, each to `value` (give this or `direction`).
+    #[serde(default)]
     pub components: Vec<Component>,
+    /// A skew support: `u · d = value` with `d` this vector made unit, the displacement
+    /// across it free (give this or `components`).
+    pub direction: Option<[f64; 2]>,
     /// Displacement history (default 0: fixed).
     #[serde(default = "zero_ramp")]
     pub value: RampSpec,
@@ -218,6 +190,8 @@ fn zero_ramp() -> RampSpec {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
+    /// Name, unique among the loads: `--set load.NAME.total=…`.
+    pub name: Option<String>,
     pub body: String,
     pub nodes: NodeSelection,
     pub component: Component,

@@ -29,6 +29,10 @@ pub const MAX_COORDINATE: f64 = 1e12;
 /// calibrated on a 10⁶-element mesh, which used about 4.5 GB before running out of memory.
 pub const BYTES_PER_DOF: f64 = 2_250.0;
 
+#[path = "validate_fix.rs"]
+mod fix;
+#[path = "validate_mesh.rs"]
+mod mesh;
 #[path = "validate_monitors.rs"]
 mod monitors;
 #[path = "validate_rigid.rs"]
@@ -228,21 +232,7 @@ pub fn validate(src: &SceneSource, s: &SceneFile) -> Result<(), SceneError> {
         min_h = min_h.min(body(&c, i, b, &mut ext)?);
     }
     limits(&c, s)?;
-    for (i, f) in s.fixes.iter().enumerate() {
-        let p = [P::K("fix"), P::I(i)];
-        c.selection(&sub(&p, "nodes"), &format!("fix.{i}.nodes"), &f.nodes)?;
-        c.ramp(&sub(&p, "value"), &format!("fix.{i}.value"), &f.value, &mut ext)?;
-    }
-    for (i, l) in s.loads.iter().enumerate() {
-        let p = [P::K("load"), P::I(i)];
-        c.selection(&sub(&p, "nodes"), &format!("load.{i}.nodes"), &l.nodes)?;
-        c.ramp(
-            &sub(&p, "total"),
-            &format!("load.{i}.total"),
-            &l.total,
-            &mut Extent::default(),
-        )?;
-    }
+    fix::check(&c, s, &mut ext)?;
     for (i, r) in s.rigid.iter().enumerate() {
         rigid::check(&c, i, r, &mut ext)?;
     }
@@ -344,103 +334,7 @@ fn body(c: &Check, i: usize, b: &BodySpec, ext: &mut Extent) -> Result<f64, Scen
             "give e.g. 0.3 (0.5 is incompressible and not supported)",
         ));
     }
-    let mesh = sub(&p, "mesh");
-    let (origin, size, elements, grading) = match &b.mesh {
-        MeshSpec::Rectangle {
-            origin,
-            size,
-            elements,
-            grading,
-        } => (origin, size, elements, grading),
-        // checked when the file is read (`model::gmsh`): its size is not known here
-        MeshSpec::Gmsh { .. } => return Ok(f64::INFINITY),
-        MeshSpec::Annulus {
-            centre,
-            radius,
-            angle_deg,
-            elements,
-        } => return annulus(c, &mesh, &key, (centre, radius, angle_deg, elements), ext),
-    };
-    c.point(&sub(&mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
-    let mut h = f64::INFINITY;
-    for k in 0..2 {
-        c.positive(&sub(&mesh, "size"), &format!("{key}.mesh.size[{k}]"), size[k])?;
-        c.positive(&sub(&mesh, "grading"), &format!("{key}.mesh.grading[{k}]"), grading[k])?;
-        if elements[k] == 0 {
-            return Err(c.fail(
-                &sub(&mesh, "elements"),
-                &format!("{key}.mesh.elements[{k}]"),
-                0,
-                "must be ≥ 1",
-                "give at least one element each way",
-            ));
-        }
-        if !(1e-6..=1e6).contains(&grading[k]) {
-            return Err(c.fail(
-                &sub(&mesh, "grading"),
-                &format!("{key}.mesh.grading[{k}]"),
-                grading[k],
-                "must be between 1e-6 and 1e6",
-                "give the ratio of the last to the first element size, e.g. 1 (uniform)",
-            ));
-        }
-        ext.add((origin[k] + size[k]).abs());
-        // smallest element of a graded row: size / (n · max(g, 1/g)) is a lower bound
-        let g = grading[k].max(1.0 / grading[k]);
-        h = h.min(size[k] / (elements[k] as f64 * g));
-    }
-    let reach = (0..2).map(|k| origin[k].abs() + size[k]).fold(0.0, f64::max);
-    if !ext.0.is_finite() || reach > MAX_COORDINATE {
-        return Err(c.fail(
-            &mesh,
-            &format!("{key}.mesh"),
-            format!("origin + size = {reach:e}"),
-            &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
-            "give a smaller mesh (or change the unit of length)",
-        ));
-    }
-    Ok(h)
-}
-
-/// The checks of an annulus mesh; returns its smallest element edge.
-fn annulus(
-    c: &Check,
-    mesh: &[P],
-    key: &str,
-    (centre, radius, angle_deg, elements): (&[f64; 2], &[f64; 2], &[f64; 2], &[usize; 2]),
-    ext: &mut Extent,
-) -> Result<f64, SceneError> {
-    c.point(&sub(mesh, "centre"), &format!("{key}.mesh.centre"), *centre, ext)?;
-    for k in 0..2 {
-        c.positive(&sub(mesh, "radius"), &format!("{key}.mesh.radius[{k}]"), radius[k])?;
-        c.finite(
-            &sub(mesh, "angle_deg"),
-            &format!("{key}.mesh.angle_deg[{k}]"),
-            angle_deg[k],
-        )?;
-        if elements[k] == 0 {
-            return Err(c.fail(
-                &sub(mesh, "elements"),
-                &format!("{key}.mesh.elements[{k}]"),
-                0,
-                "must be ≥ 1",
-                "give at least one element each way",
-            ));
-        }
-    }
-    let sweep = (angle_deg[1] - angle_deg[0]).abs();
-    if radius[1] <= radius[0] || sweep == 0.0 || sweep > 360.0 {
-        return Err(c.fail(
-            mesh,
-            &format!("{key}.mesh"),
-            format!("radius {radius:?}, angle_deg {angle_deg:?}"),
-            "needs radius[0] < radius[1] and two different angles at most a turn apart",
-            "e.g. radius = [1.0, 1.005], angle_deg = [0.0, 180.0]",
-        ));
-    }
-    ext.add(centre[0].abs().max(centre[1].abs()) + radius[1]);
-    let around = radius[0] * sweep.to_radians() / elements[0] as f64;
-    Ok(around.min((radius[1] - radius[0]) / elements[1] as f64))
+    mesh::check(c, &sub(&p, "mesh"), &key, &b.mesh, ext)
 }
 
 fn limits(c: &Check, s: &SceneFile) -> R {
@@ -475,7 +369,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
         MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
             format!("[{}, {}]", elements[0], elements[1])
         }
-        MeshSpec::Gmsh { file } => file.clone(),
+        MeshSpec::Gmsh { file, .. } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {
         return Err(c.fail(

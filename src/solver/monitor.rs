@@ -41,7 +41,7 @@ fn record(model: &Model, m: &Monitor, asm: &Assembler, u: &[f64], t: f64, points
             for &n in nodes {
                 let d = 2 * n + m.component;
                 disp += u[d];
-                force += if asm.dofs.eq[d].is_none() {
+                force += if asm.dofs.is_prescribed(d) {
                     asm.r_full[d]
                 } else {
                     model.loads.iter().filter(|l| l.dof == d).map(|l| l.ramp.at(t)).sum()

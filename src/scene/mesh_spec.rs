@@ -1,0 +1,111 @@
+//! The `[body.mesh]` table: mesh generators (`rectangle`, `annulus`) with their grading and
+//! rotation, or a Gmsh file.
+
+use crate::model::mesh::AxisGrading;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Mesh generators.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum MeshSpec {
+    /// Structured mesh of the rectangle `origin .. origin + size`, optionally turned about a
+    /// point (`rotate`).
+    Rectangle {
+        origin: [f64; 2],
+        size: [f64; 2],
+        /// Elements along x and y.
+        elements: [usize; 2],
+        /// Grading ratio along x and y (default 1 = uniform); what it compares is set by
+        /// `bias` (by default the last element over the first).
+        #[serde(default = "unit_grading")]
+        grading: [f64; 2],
+        /// Where each axis is refined: `"end"` (default: `grading` = last / first element),
+        /// `"both"` (symmetric: `grading` = middle / end elements, > 1 refines both ends) or
+        /// `"centre"` (`grading` = end / centre elements, > 1 refines the middle, or `focus`).
+        #[serde(default)]
+        bias: [Bias; 2],
+        /// With `bias = "centre"`: the point to refine towards, in the rectangle's coordinates
+        /// before `rotate` (default: its middle); a node line is placed through it.
+        focus: Option<[f64; 2]>,
+        /// Turn the mesh about a point (node selections by coordinates see the turned mesh).
+        rotate: Option<Rotation>,
+    },
+    /// Structured mesh of the ring sector `radius[0] ≤ r ≤ radius[1]`,
+    /// `angle_deg[0] ≤ θ ≤ angle_deg[1]` about `centre` (a belt lying on a cylinder); node
+    /// sets and faces `inner`, `outer`, `start`, `end` (and `all`).
+    Annulus {
+        centre: [f64; 2],
+        /// Inner and outer radius.
+        radius: [f64; 2],
+        /// Start and end angle, degrees (counter-clockwise from +x).
+        angle_deg: [f64; 2],
+        /// Elements around and through.
+        elements: [usize; 2],
+        /// Grading ratio around (from `angle_deg[0]` to `angle_deg[1]`) and through (from
+        /// `radius[0]` to `radius[1]`), as for a rectangle (default 1 = uniform).
+        #[serde(default = "unit_grading")]
+        grading: [f64; 2],
+        /// As for a rectangle, per direction (around, through).
+        #[serde(default)]
+        bias: [Bias; 2],
+        /// With `bias = "centre"`: `[angle_deg, radius]` to refine towards.
+        focus: Option<[f64; 2]>,
+    },
+    /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
+    /// are the body's node sets, its physical curves on the boundary its faces.
+    Gmsh {
+        /// Path of the `.msh` file, relative to the scene file (for a built-in scene: a
+        /// file shipped with it, e.g. `half-disc.msh`).
+        file: String,
+    },
+}
+
+pub(super) fn unit_grading() -> [f64; 2] {
+    [1.0, 1.0]
+}
+
+/// Where the elements of one axis of a structured mesh are refined.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Bias {
+    /// Geometric from the first to the last element: `grading` = last / first.
+    #[default]
+    End,
+    /// Symmetric about the middle: `grading` = middle / end elements (> 1: fine at both ends).
+    Both,
+    /// Symmetric about the middle, or towards `focus`: `grading` = end / centre elements
+    /// (> 1: fine at the centre).
+    #[serde(alias = "center")]
+    Centre,
+}
+
+impl Bias {
+    pub fn name(self) -> &'static str {
+        match self {
+            Bias::End => "end",
+            Bias::Both => "both",
+            Bias::Centre => "centre",
+        }
+    }
+
+    /// The axis grading of `ratio` with this bias; `at` is the focus along the axis
+    /// (measured from the axis' start), for [`Bias::Centre`] only.
+    pub fn axis(self, ratio: f64, at: Option<f64>) -> AxisGrading {
+        match (self, at) {
+            (Bias::End, _) => AxisGrading::End(ratio),
+            (Bias::Both, _) => AxisGrading::Both(ratio),
+            (Bias::Centre, None) => AxisGrading::Centre(ratio),
+            (Bias::Centre, Some(at)) => AxisGrading::At { ratio, at },
+        }
+    }
+}
+
+/// A rotation of a mesh by `angle_deg` (counter-clockwise) about `about` (default: the
+/// rectangle's `origin`).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Rotation {
+    pub angle_deg: f64,
+    pub about: Option<[f64; 2]>,
+}

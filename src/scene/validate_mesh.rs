@@ -1,0 +1,201 @@
+//! Checks of a body's `[body.mesh]`: sizes, element counts, grading and its bias and focus,
+//! rotation; each returns a lower bound of the mesh's smallest element edge.
+
+use super::{sub, Check, Extent, MAX_COORDINATE, P};
+use crate::scene::types::{Bias, MeshSpec, Rotation};
+use crate::scene::SceneError;
+
+/// Checks a body's mesh (`mesh`: its path, `key`: `body.NAME`) and returns a lower bound of
+/// its smallest element edge (infinite for a Gmsh file, checked when read).
+pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut Extent) -> Result<f64, SceneError> {
+    match spec {
+        MeshSpec::Rectangle {
+            origin,
+            size,
+            elements,
+            grading,
+            bias,
+            focus,
+            rotate,
+        } => {
+            c.point(&sub(mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
+            for (k, s) in size.iter().enumerate() {
+                c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), *s)?;
+            }
+            let span = [0, 1].map(|k| [origin[k], origin[k] + size[k]]);
+            let f = axes(c, mesh, key, elements, grading, bias, *focus, span)?;
+            let h = (0..2)
+                .map(|k| size[k] / elements[k] as f64 * f[k])
+                .fold(f64::INFINITY, f64::min);
+            let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+                .map(|[a, b]| [origin[0] + a * size[0], origin[1] + b * size[1]]);
+            let reach = match rotate {
+                Some(r) => rotation(c, mesh, key, r, *origin, &corners, ext)?,
+                None => corners.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())),
+            };
+            ext.add(reach);
+            if !ext.0.is_finite() || reach > MAX_COORDINATE {
+                return Err(c.fail(
+                    mesh,
+                    &format!("{key}.mesh"),
+                    format!("a corner {reach:e} from the origin"),
+                    &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
+                    "give a smaller mesh (or change the unit of length)",
+                ));
+            }
+            Ok(h)
+        }
+        // checked when the file is read (`model::gmsh`): its size is not known here
+        MeshSpec::Gmsh { .. } => Ok(f64::INFINITY),
+        MeshSpec::Annulus {
+            centre,
+            radius,
+            angle_deg,
+            elements,
+            grading,
+            bias,
+            focus,
+        } => {
+            let around = annulus(c, mesh, key, (centre, radius, angle_deg, elements), ext)?;
+            let span = [*angle_deg, *radius].map(|[a, b]| [a.min(b), a.max(b)]);
+            let f = axes(c, mesh, key, elements, grading, bias, *focus, span)?;
+            Ok(around * f[0].min(f[1]))
+        }
+    }
+}
+
+/// Element counts, grading, bias and focus of the two axes of a structured mesh spanning
+/// `span[k] = [from, to]`; returns per axis a lower bound of its smallest element over the
+/// uniform one: with `G = max(g, 1/g)` every element is at most `G` times the smallest, so a
+/// side of length `L_s` (of the axis' `L`, `L_s = L` but towards a `focus`) cut into at most
+/// `n` elements has none shorter than `L_s / (n G)`, i.e. `(L_s / L) / G` times `L / n`.
+#[allow(clippy::too_many_arguments)]
+fn axes(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    elements: &[usize; 2],
+    grading: &[f64; 2],
+    bias: &[Bias; 2],
+    focus: Option<[f64; 2]>,
+    span: [[f64; 2]; 2],
+) -> Result<[f64; 2], SceneError> {
+    let mut factor = [1.0; 2];
+    for k in 0..2 {
+        if elements[k] == 0 {
+            return Err(c.fail(
+                &sub(mesh, "elements"),
+                &format!("{key}.mesh.elements[{k}]"),
+                0,
+                "must be ≥ 1",
+                "give at least one element each way",
+            ));
+        }
+        c.positive(&sub(mesh, "grading"), &format!("{key}.mesh.grading[{k}]"), grading[k])?;
+        if !(1e-6..=1e6).contains(&grading[k]) {
+            return Err(c.fail(
+                &sub(mesh, "grading"),
+                &format!("{key}.mesh.grading[{k}]"),
+                grading[k],
+                "must be between 1e-6 and 1e6",
+                "give the ratio of element sizes the `bias` names, e.g. 1 (uniform)",
+            ));
+        }
+        let len = span[k][1] - span[k][0];
+        let g = grading[k].max(1.0 / grading[k]);
+        let mut shortest_side = len;
+        if let (Bias::Centre, Some(f)) = (bias[k], focus) {
+            let at = f[k];
+            c.finite(&sub(mesh, "focus"), &format!("{key}.mesh.focus[{k}]"), at)?;
+            if !(span[k][0] < at && at < span[k][1]) {
+                return Err(c.fail(
+                    &sub(mesh, "focus"),
+                    &format!("{key}.mesh.focus[{k}]"),
+                    at,
+                    &format!(
+                        "must lie strictly inside the mesh along that axis ({} .. {})",
+                        span[k][0], span[k][1]
+                    ),
+                    "give an interior point to refine towards, or remove `focus` to refine the middle",
+                ));
+            }
+            shortest_side = (at - span[k][0]).min(span[k][1] - at);
+        }
+        factor[k] = shortest_side / len / g;
+    }
+    if focus.is_some() && !bias.contains(&Bias::Centre) {
+        return Err(c.fail(
+            &sub(mesh, "focus"),
+            &format!("{key}.mesh.focus"),
+            format!("{:?}", focus.unwrap_or_default()),
+            &format!(
+                "is used only along an axis with bias = \"centre\" (bias is [\"{}\", \"{}\"])",
+                bias[0].name(),
+                bias[1].name()
+            ),
+            "set bias = [\"centre\", \"centre\"] (or on one axis), or remove `focus`",
+        ));
+    }
+    Ok(factor)
+}
+
+/// The rotation's angle and point; returns the largest coordinate of the turned `corners`.
+fn rotation(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    r: &Rotation,
+    origin: [f64; 2],
+    corners: &[[f64; 2]],
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    let at = sub(mesh, "rotate");
+    c.finite(&at, &format!("{key}.mesh.rotate.angle_deg"), r.angle_deg)?;
+    let about = r.about.unwrap_or(origin);
+    c.point(&at, &format!("{key}.mesh.rotate.about"), about, ext)?;
+    let mut turned = corners.to_vec();
+    crate::model::mesh::rotate(&mut turned, r.angle_deg, about);
+    Ok(turned.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())))
+}
+
+/// The checks of an annulus' centre, radii and angles; returns its smallest element edge
+/// when uniform.
+fn annulus(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (centre, radius, angle_deg, elements): (&[f64; 2], &[f64; 2], &[f64; 2], &[usize; 2]),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    c.point(&sub(mesh, "centre"), &format!("{key}.mesh.centre"), *centre, ext)?;
+    for k in 0..2 {
+        c.positive(&sub(mesh, "radius"), &format!("{key}.mesh.radius[{k}]"), radius[k])?;
+        c.finite(
+            &sub(mesh, "angle_deg"),
+            &format!("{key}.mesh.angle_deg[{k}]"),
+            angle_deg[k],
+        )?;
+        if elements[k] == 0 {
+            return Err(c.fail(
+                &sub(mesh, "elements"),
+                &format!("{key}.mesh.elements[{k}]"),
+                0,
+                "must be ≥ 1",
+                "give at least one element each way",
+            ));
+        }
+    }
+    let sweep = (angle_deg[1] - angle_deg[0]).abs();
+    if radius[1] <= radius[0] || sweep == 0.0 || sweep > 360.0 {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("radius {radius:?}, angle_deg {angle_deg:?}"),
+            "needs radius[0] < radius[1] and two different angles at most a turn apart",
+            "e.g. radius = [1.0, 1.005], angle_deg = [0.0, 180.0]",
+        ));
+    }
+    ext.add(centre[0].abs().max(centre[1].abs()) + radius[1]);
+    let around = radius[0] * sweep.to_radians() / elements[0] as f64;
+    Ok(around.min((radius[1] - radius[0]) / elements[1] as f64))
+}
