@@ -124,7 +124,8 @@ fn tangent_matches_finite_differences_in_every_state() {
 /// for the whole force: `ζ`, `ξ^α` are invariant under rotation, so `Σ x × ∇ξ^α = 0`; the
 /// couple of a traction acting on the slave at the offset `ζ n` is balanced through the
 /// `ζ n·δρ_α` term of `δξ^α` on the facet nodes (checked non-trivial: the slave's tangential
-/// force has a moment about `ρ` of at least 1e-4 of the largest force).
+/// force has a moment about `ρ` of at least 1e-4 of the largest force). On the flat facet
+/// the slave's force is `N n + T_α ρ^α` (1e-12): the sign convention.
 #[test]
 fn forces_balance_and_moments_vanish() {
     let hist = History {
@@ -164,6 +165,13 @@ fn forces_balance_and_moments_vanish() {
         let t_s: [f64; 3] = std::array::from_fn(|c| -r[c] - e.normal_force * n[c]);
         let couple = cross(n, t_s).map(|v| v * e.projection.gap);
         assert!(norm(couple) > 1e-4 * scale, "{couple:?}");
+        if !p.x[1..].iter().any(|x| x[2] != 0.0) {
+            // flat facet (h = 0): ∇_s ξ^α = ρ^α, the slave's force is N n + T_α ρ^α (T acts
+            // on the slave, N pushes it out along n)
+            let t = e.projection.point.vector(e.traction);
+            let want: [f64; 3] = std::array::from_fn(|c| e.normal_force * n[c] + t[c]);
+            assert!(norm(sub([-r[0], -r[1], -r[2]], want)) < 1e-12 * scale);
+        }
         eprintln!(
             "balance: |sum| {:.1e}, |moment| {:.1e}, normal {:.1e} (force scale {scale:.1e})",
             norm(sum),
