@@ -11,6 +11,7 @@ pub mod analysis;
 pub mod assembly;
 pub mod chart;
 pub mod contact;
+pub mod contact3d;
 pub mod element;
 pub mod format;
 pub mod linalg;

@@ -1,0 +1,238 @@
+//! Residual and consistent tangent of one 3D node-to-surface contact point: a slave node
+//! against a bilinear facet, penalty normal contact and Coulomb friction by return mapping
+//! in the facet's tangent plane with its metric (seed §3 on surfaces; Konyukhov &
+//! Schweizerhof, Comput Mech 35 (2005) 190–213, §§3–5; notes `contact-3d.md`).
+//!
+//! Local unknowns: the current positions of 5 nodes, slot 0 the slave `x_s`, slots 1–4 the
+//! facet's nodes (counter-clockwise seen from outside, see [`super::surface`]); slot `i`
+//! owns local DOFs `3i..3i+3` (15 in all).
+//!
+//! Law, in covariant components on the current facet:
+//! - gap `ζ = (x_s − ρ(ξ))·n` at the closest point `ξ` ([`super::projection`]), normal force
+//!   `N = −ε_N ζ` while positive (closed), else the point is open and carries nothing;
+//! - stick trial (seed eq. 1): `T_α^tr = T_α^(n) − ε_T a_αβ (ξ^β − ξ^β_(n))` with the
+//!   history `(ξ_(n), T^(n))` of the last converged increment *on this facet* (carried here
+//!   by [`super::transfer`] when the point has changed facet), `a_αβ` at the current `ξ`;
+//! - slip function `Φ = √(T^tr_α a^αβ T^tr_β) − μ N`; `Φ ≤ 0`: stick, `T_α = T_α^tr`;
+//!   `Φ > 0`: slip, `T_α = μ N T_α^tr / ‖T^tr‖`;
+//! - no history (the first closing increment) or `μ = 0`: `T_α = 0` (the first closing
+//!   increment is frictionless and its end fixes the anchor, as in 2D).
+//!
+//! Virtual work `δW = −N δζ − T_α δξ^α`, so the residual (internal force) is
+//! `r = −N ∇ζ − T_α ∇ξ^α` and the tangent
+//! `K = −∇ζ ∇Nᵀ − N ∇²ζ − Σ_α (∇ξ^α ∇T_αᵀ + T_α ∇²ξ^α)`, `∇` over the 15 DOFs. `ζ`, `ξ^α`,
+//! `N` and `T_α` are evaluated in second-order dual numbers (`Dual2SVec64<15>`, on the
+//! stack), which gives `δζ`, `δξ^α` (including the curvature terms of a warped facet) and
+//! their linearisations exactly; the unsymmetric friction blocks come from `∇T_α`. At the
+//! closest point `∇_s ζ = n`, `∇_s ξ^α = (a − ζ h)^{-1, αβ} ρ_β`, so the force on the slave is
+//! `−r_s = N n + T_α ∇_s ξ^α` (`= N n + T_α ρ^α` on a flat facet): `T` acts on the slave.
+//! The history is data (not differentiated).
+
+use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
+use super::surface::Facet;
+use super::vec3::{Scalar, V3};
+use crate::contact::law::ContactState;
+use crate::model::ContactLaw;
+use nalgebra::{Const, U1};
+use num_dual::{Dual2SVec64, DualSVec64};
+
+/// Nodes of one point: the slave and the facet's four.
+pub const NODES: usize = 5;
+/// Local DOFs.
+pub const DOFS: usize = 3 * NODES;
+
+/// History of a point closed at the last converged increment, on the facet it is on now.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct History {
+    /// `ξ_(n)`: the contact point of the last converged increment (on this facet's
+    /// parametrisation, possibly outside `[−1, 1]²` after a transfer).
+    pub xi: [f64; 2],
+    /// `T_α^(n)`: covariant traction on this facet.
+    pub traction: [f64; 2],
+}
+
+/// Everything the kernel sees of one contact point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointProblem {
+    pub law: ContactLaw,
+    /// Current positions: slot 0 the slave, 1–4 the facet's nodes.
+    pub x: [[f64; 3]; NODES],
+    /// `None`: the point was open at the last converged increment.
+    pub history: Option<History>,
+    /// Newton's settings of the projection (its start is replaced by `ξ_(n)` when there is
+    /// a history).
+    pub projection: ProjectionOptions,
+}
+
+/// One evaluation in scalar type `S`.
+#[derive(Debug, Clone, Copy)]
+pub struct PointEval<S: Scalar> {
+    pub projection: Projection<S>,
+    /// `N` (zero when open).
+    pub normal_force: S,
+    /// `T_α^tr` (zero without friction history).
+    pub trial: [S; 2],
+    /// `T_α` after the return map.
+    pub traction: [S; 2],
+    pub state: ContactState,
+}
+
+impl PointProblem {
+    /// A point without history and with the default projection settings.
+    pub fn new(law: ContactLaw, x: [[f64; 3]; NODES]) -> Self {
+        PointProblem {
+            law,
+            x,
+            history: None,
+            projection: ProjectionOptions::default(),
+        }
+    }
+
+    /// Projection, normal force, trial and returned traction for node positions `q`.
+    pub fn evaluate<S: Scalar>(&self, q: &[V3<S>; NODES]) -> Result<PointEval<S>, ProjectionError> {
+        let facet = Facet {
+            x: [q[1], q[2], q[3], q[4]],
+        };
+        let mut opts = self.projection;
+        if let Some(h) = self.history {
+            opts.start = h.xi.map(|v| v.clamp(-0.5 * XI_BOX, 0.5 * XI_BOX));
+        }
+        let projection = project_with(&facet, q[0], &opts)?;
+        let zero = S::from(0.0);
+        let normal = projection.gap * (-self.law.eps_n);
+        let mut eval = PointEval {
+            projection,
+            normal_force: zero,
+            trial: [zero; 2],
+            traction: [zero; 2],
+            state: ContactState::Open,
+        };
+        if normal.re() <= 0.0 {
+            return Ok(eval);
+        }
+        eval.normal_force = normal;
+        let history = self.history.filter(|_| self.law.mu > 0.0);
+        let Some(h) = history else {
+            eval.state = if self.law.mu > 0.0 {
+                ContactState::Stick
+            } else {
+                ContactState::Slip
+            };
+            return Ok(eval);
+        };
+        let p = &eval.projection.point;
+        let slip = p.lower([p.xi[0] - h.xi[0], p.xi[1] - h.xi[1]]);
+        let eps_t = self.law.eps_t;
+        let trial = [
+            S::from(h.traction[0]) - slip[0] * eps_t,
+            S::from(h.traction[1]) - slip[1] * eps_t,
+        ];
+        let norm = p.norm(trial);
+        eval.trial = trial;
+        if norm.re() <= self.law.mu * normal.re() {
+            eval.traction = trial;
+            eval.state = ContactState::Stick;
+        } else {
+            let factor = normal * self.law.mu / norm;
+            eval.traction = [trial[0] * factor, trial[1] * factor];
+            eval.state = ContactState::Slip;
+        }
+        Ok(eval)
+    }
+
+    /// Plain evaluation.
+    pub fn evaluate_f64(&self) -> Result<PointEval<f64>, ProjectionError> {
+        self.evaluate(&self.x)
+    }
+
+    /// The residual `r = −N ∇ζ − T_α ∇ξ^α` alone (first-order duals).
+    pub fn residual(&self, r: &mut [f64; DOFS]) -> Result<PointEval<f64>, ProjectionError> {
+        let q: [V3<DualSVec64<DOFS>>; NODES] = std::array::from_fn(|i| {
+            std::array::from_fn(|c| DualSVec64::<DOFS>::from_re(self.x[i][c]).derivative(3 * i + c))
+        });
+        let e = self.evaluate(&q)?;
+        r.fill(0.0);
+        if e.state != ContactState::Open {
+            let grad = |s: &DualSVec64<DOFS>| s.eps.unwrap_generic(Const::<DOFS>, U1);
+            let gz = grad(&e.projection.gap);
+            let gx = [grad(&e.projection.point.xi[0]), grad(&e.projection.point.xi[1])];
+            let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
+            for i in 0..DOFS {
+                r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
+            }
+        }
+        Ok(real_parts(&e))
+    }
+
+    /// Residual `r` and consistent tangent `k = ∂r/∂x` (row-major, `k[DOFS i + j]`), see the
+    /// module docs; returns the plain evaluation. Open: both zero.
+    pub fn residual_tangent(
+        &self,
+        r: &mut [f64; DOFS],
+        k: &mut [f64; DOFS * DOFS],
+    ) -> Result<PointEval<f64>, ProjectionError> {
+        type D = Dual2SVec64<DOFS>;
+        let q: [V3<D>; NODES] =
+            std::array::from_fn(|i| std::array::from_fn(|c| D::from_re(self.x[i][c]).derivative(3 * i + c)));
+        let e = self.evaluate(&q)?;
+        r.fill(0.0);
+        k.fill(0.0);
+        if e.state != ContactState::Open {
+            let grad = |s: &D| s.v1.unwrap_generic(U1, Const::<DOFS>);
+            let hess = |s: &D| s.v2.unwrap_generic(Const::<DOFS>, Const::<DOFS>);
+            let (zeta, xi) = (&e.projection.gap, &e.projection.point.xi);
+            let (gz, hz) = (grad(zeta), hess(zeta));
+            let gx = [grad(&xi[0]), grad(&xi[1])];
+            let hx = [hess(&xi[0]), hess(&xi[1])];
+            let gn = grad(&e.normal_force);
+            let gt = [grad(&e.traction[0]), grad(&e.traction[1])];
+            let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
+            for i in 0..DOFS {
+                r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
+                for j in 0..DOFS {
+                    k[DOFS * i + j] = -gz[i] * gn[j]
+                        - n * hz[(i, j)]
+                        - (gx[0][i] * gt[0][j] + t[0] * hx[0][(i, j)])
+                        - (gx[1][i] * gt[1][j] + t[1] * hx[1][(i, j)]);
+                }
+            }
+        }
+        Ok(real_parts(&e))
+    }
+
+    /// The history to store when this evaluation is the converged state of the increment:
+    /// `ξ_(n+1)` and `T_α` (zero traction for a point closing now), `None` when open.
+    pub fn next_history(e: &PointEval<f64>) -> Option<History> {
+        (e.state != ContactState::Open).then_some(History {
+            xi: e.projection.point.xi,
+            traction: e.traction,
+        })
+    }
+}
+
+/// The real parts of a dual evaluation.
+fn real_parts<S: Scalar>(e: &PointEval<S>) -> PointEval<f64> {
+    let p = &e.projection.point;
+    let m = |a: [[S; 2]; 2]| a.map(|row| row.map(|v| v.re()));
+    let v = |a: V3<S>| a.map(|c| c.re());
+    PointEval {
+        projection: Projection {
+            point: super::surface::FacetPoint {
+                xi: p.xi.map(|c| c.re()),
+                rho: v(p.rho),
+                tangents: p.tangents.map(v),
+                metric: m(p.metric),
+                inverse: m(p.inverse),
+                normal: v(p.normal),
+                curvature: m(p.curvature),
+            },
+            gap: e.projection.gap.re(),
+            location: e.projection.location,
+            iterations: e.projection.iterations,
+        },
+        normal_force: e.normal_force.re(),
+        trial: e.trial.map(|c| c.re()),
+        traction: e.traction.map(|c| c.re()),
+        state: e.state,
+    }
+}
