@@ -174,6 +174,10 @@ struct Face {
     tangent: Vec<[f64; 2]>,
 }
 
+/// Per node of a face: its arc length, tributary length and the sum of its segments' unit
+/// directions.
+type NodeSum = (f64, f64, [f64; 2]);
+
 fn face(model: &Model, u: &[f64], t: f64, first: usize) -> Option<Face> {
     let pair = &model.contacts[first];
     let Master::Face { segments, .. } = &pair.master else {
@@ -185,8 +189,7 @@ fn face(model: &Model, u: &[f64], t: f64, first: usize) -> Option<Face> {
     for k in 0..segments.len() {
         start[k + 1] = start[k] + cfg.segment(pair, k).length();
     }
-    // (node, s, tributary, tangent sum)
-    let mut acc: HashMap<usize, (f64, f64, [f64; 2])> = HashMap::new();
+    let mut acc: HashMap<usize, NodeSum> = HashMap::new();
     for (k, &[a, b]) in segments.iter().enumerate() {
         let (pa, pb) = (at(a), at(b));
         let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
@@ -201,7 +204,7 @@ fn face(model: &Model, u: &[f64], t: f64, first: usize) -> Option<Face> {
             e.2 = [e.2[0] + dir[0], e.2[1] + dir[1]];
         }
     }
-    let mut nodes: Vec<(usize, (f64, f64, [f64; 2]))> = acc.into_iter().collect();
+    let mut nodes: Vec<(usize, NodeSum)> = acc.into_iter().collect();
     nodes.sort_by(|x, y| x.1 .0.total_cmp(&y.1 .0).then(x.0.cmp(&y.0)));
     let unit = |v: [f64; 2]| {
         let l = v[0].hypot(v[1]);
