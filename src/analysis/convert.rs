@@ -122,6 +122,13 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
         let Some(p) = at else { continue };
         let profiles = pressure.get(&inc.increment).map_or(&[][..], Vec::as_slice);
         format.positions(&mut out, p, profiles)?;
+        let joined: Vec<_> = r
+            .interface
+            .iter()
+            .filter(|f| f.increment == inc.increment)
+            .cloned()
+            .collect();
+        format.interfaces(&mut out, &joined)?;
         if stride > 0 && (inc.increment.is_multiple_of(stride) || Some(inc.increment) == last) {
             let points: Vec<ScenePoint> = contact.iter().map(ScenePoint::of).collect();
             let view = SceneView {

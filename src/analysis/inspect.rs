@@ -1,7 +1,9 @@
 //! `contrail inspect`: what a recording holds and how its run ended.
 
 use super::recording::Recording;
-use crate::format::{compact_list, count, plain};
+use crate::contact::law::ContactState;
+use crate::format::{compact_list, count, plain, sig};
+use crate::model::SECOND_PASS_SUFFIX;
 use crate::record::{LogLevel, Outcome};
 use serde::Serialize;
 use std::fmt::Write;
@@ -37,6 +39,9 @@ pub struct InspectReport {
     pub nodes: usize,
     pub elements: usize,
     pub contact_pairs: Vec<String>,
+    /// Each two-pass interface at the last increment with `/interface` (both passes
+    /// combined, see [`crate::record::interface`]).
+    pub interfaces: Vec<String>,
     pub increments: usize,
     pub final_t: f64,
     pub end: f64,
@@ -94,8 +99,12 @@ pub fn inspect(r: &Recording) -> InspectReport {
             .contacts
             .iter()
             .map(|p| {
+                let pass = match p.name.strip_suffix(SECOND_PASS_SUFFIX) {
+                    Some(first) => format!("; the second pass of `{first}`: see its interface"),
+                    None => String::new(),
+                };
                 format!(
-                    "{}: {} against the master {} ({})",
+                    "{}: {} against the master {} ({}{pass})",
                     p.name,
                     count(p.slaves.len(), "slave", "slaves"),
                     p.master,
@@ -103,6 +112,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
                 )
             })
             .collect(),
+        interfaces: interface_rows(r),
         increments: r.increments.len(),
         final_t: last.map_or(0.0, |i| i.t),
         end: r.model.end,
@@ -121,6 +131,66 @@ pub fn inspect(r: &Recording) -> InspectReport {
         positions_every: meta("positions_every"),
         chunks: r.chunks,
     }
+}
+
+/// One line per two-pass interface, at the last increment that has `/interface`: its normal
+/// force and how the passes share it, its pressure, its stick zone.
+fn interface_rows(r: &Recording) -> Vec<String> {
+    let Some(last) = r.interface.iter().map(|f| f.increment).max() else {
+        return Vec::new();
+    };
+    (r.interface.iter().filter(|f| f.increment == last))
+        .map(|f| {
+            let mu = r.model.contacts.get(f.first_pass).map_or(0.0, |p| p.mu);
+            let closed: Vec<usize> = (0..f.node.len())
+                .filter(|&j| f.state[j] != ContactState::Open)
+                .collect();
+            let passes = f.first_pass_force + f.second_pass_force;
+            let share = |x: f64| if passes != 0.0 { 100.0 * x / passes } else { f64::NAN };
+            let (lo, hi) = (closed.iter().map(|&j| f.pressure[j]))
+                .filter(|p| p.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p), b.max(p)));
+            let length: f64 = closed.iter().map(|&j| f.tributary[j]).sum();
+            let zone = if mu == 0.0 {
+                "frictionless".to_string()
+            } else {
+                let stick: Vec<f64> = (0..f.node.len())
+                    .filter(|&j| f.state[j] == ContactState::Stick)
+                    .map(|j| f.s[j])
+                    .collect();
+                match (stick.first(), stick.last()) {
+                    (Some(a), Some(b)) => format!(
+                        "{} stick in s ∈ [{}, {}], {} slip",
+                        stick.len(),
+                        sig(*a, 4),
+                        sig(*b, 4),
+                        closed.len() - stick.len()
+                    ),
+                    _ => format!("no stick, {} slip", closed.len()),
+                }
+            };
+            format!(
+                "{} at increment {last}: normal force {} (first pass {:.1} %, second pass {:.1} %), \
+                 mean pressure {} (nodes {} to {}), {} of {} nodes closed ({zone})",
+                f.name,
+                sig(f.normal_force, 6),
+                share(f.first_pass_force),
+                share(f.second_pass_force),
+                sig(
+                    if length > 0.0 {
+                        f.normal_force / length
+                    } else {
+                        f64::NAN
+                    },
+                    6
+                ),
+                sig(lo, 4),
+                sig(hi, 4),
+                closed.len(),
+                f.node.len()
+            )
+        })
+        .collect()
 }
 
 /// How the run ended: its status, where and why it stopped (empty when it completed), and
@@ -228,6 +298,9 @@ fn render_rows(s: &InspectReport, o: &mut String) {
     );
     for p in &s.contact_pairs {
         row("contact pair", p.clone());
+    }
+    for f in &s.interfaces {
+        row("interface", f.clone());
     }
     row(
         "increments",

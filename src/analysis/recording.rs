@@ -4,6 +4,7 @@
 
 use super::chunks::{expand, split};
 use super::validate_records::{check_model, check_records};
+use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
 use crate::record::mcap::schemas;
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
@@ -64,6 +65,9 @@ pub struct Recording {
     pub outcome: Option<Outcome>,
     /// Contact pressure profiles (`/pressure`; none in recordings made before the channel).
     pub pressure: Vec<PressureRecord>,
+    /// Two-pass interfaces, both passes combined (`/interface`; none in recordings of runs
+    /// without a two-pass pair or made before the channel).
+    pub interface: Vec<InterfaceRecord>,
     /// Message count per topic.
     pub message_counts: BTreeMap<String, u64>,
     pub chunks: usize,
@@ -146,6 +150,7 @@ impl Recording {
             logs: b.logs,
             outcome: b.outcome,
             pressure: b.pressure,
+            interface: b.interface,
             message_counts: b.counts,
             chunks,
             start_time: b.start_time,
@@ -374,6 +379,7 @@ pub(crate) struct Builder {
     pub(crate) logs: Vec<LogRecord>,
     pub(crate) outcome: Option<Outcome>,
     pub(crate) pressure: Vec<PressureRecord>,
+    pub(crate) interface: Vec<InterfaceRecord>,
     pub(crate) counts: BTreeMap<String, u64>,
     /// Format-3 messages, made into records once the model is known.
     contact_arrays: Vec<ContactArrays>,
@@ -431,6 +437,7 @@ impl Builder {
                 self.pressure_arrays.push(parse(topic, seq, data)?);
             }
             schemas::PRESSURE => self.pressure.push(parse(topic, seq, data)?),
+            schemas::INTERFACE => self.interface.push(parse(topic, seq, data)?),
             _ => {}
         }
         Ok(())

@@ -120,5 +120,21 @@ pub(crate) fn check_records(m: &ModelRecord, b: &Builder) -> Result<(), (String,
     for l in &b.logs {
         too_big(schemas::LOG, l.increment)?;
     }
+    for f in &b.interface {
+        too_big(schemas::INTERFACE, f.increment)?;
+        f.check().or_else(|what| err(schemas::INTERFACE, what))?;
+        if f.first_pass >= m.contacts.len() || f.second_pass >= m.contacts.len() {
+            return err(
+                schemas::INTERFACE,
+                format!(
+                    "interface `{}` joins pairs {} and {}; the model has {} pairs",
+                    f.name,
+                    f.first_pass,
+                    f.second_pass,
+                    m.contacts.len()
+                ),
+            );
+        }
+    }
     Ok(())
 }

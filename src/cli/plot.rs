@@ -34,9 +34,13 @@ pub struct PlotArgs {
     /// number or `last`) instead of load–displacement curves (MCAP recordings only).
     #[arg(long, value_name = "INC")]
     pub pressure: Option<String>,
-    /// With --pressure: only this contact pair.
+    /// With --pressure: only this contact pair (a two-pass pair's name: its interface).
     #[arg(long, requires = "pressure")]
     pub pair: Option<String>,
+    /// With --pressure: draw each pass of a two-pass pair by itself (its own `/pressure`
+    /// profile, along its own master) instead of the interface of both passes.
+    #[arg(long, requires = "pressure")]
+    pub passes: bool,
 }
 
 fn split(spec: &str) -> (String, String) {
@@ -145,10 +149,16 @@ fn read(spec: &str, monitor: Option<&str>) -> anyhow::Result<Series> {
     read_csv(&path, label, monitor)
 }
 
-fn read_pressure(spec: &str, increment: Option<usize>, pair: Option<&str>) -> anyhow::Result<Vec<Series>> {
+fn read_pressure(spec: &str, increment: Option<usize>, a: &PlotArgs) -> anyhow::Result<Vec<Series>> {
     let (path, label) = split(spec);
     let r = Recording::open(Path::new(&path)).map_err(|e| BadInput(e.to_string()))?;
-    Ok(super::plot_pressure::series(&r, &label, increment, pair)?)
+    Ok(super::plot_pressure::series(
+        &r,
+        &label,
+        increment,
+        a.pair.as_deref(),
+        a.passes,
+    )?)
 }
 
 pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
@@ -157,7 +167,7 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<ExitCode> {
             let inc = super::plot_pressure::parse_increment(inc).map_err(|e| BadInput(format!("--pressure: {e}")))?;
             let mut all = Vec::new();
             for r in &a.runs {
-                all.extend(read_pressure(r, inc, a.pair.as_deref())?);
+                all.extend(read_pressure(r, inc, &a)?);
             }
             (all, ["Contact pressure", "arc length along the master", "pressure"])
         }

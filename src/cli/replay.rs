@@ -63,6 +63,15 @@ pub fn replay_into(r: &Recording, view: &mut RerunView) -> Result<(), rerun_sink
             r.contact_at(inc.increment),
             cr,
         )?;
+        let joined: Vec<_> = r
+            .interface
+            .iter()
+            .filter(|f| f.increment == inc.increment)
+            .cloned()
+            .collect();
+        if !joined.is_empty() {
+            view.interfaces(inc.increment, &joined)?;
+        }
     }
     for i in it {
         view.iteration(i)?;

@@ -59,6 +59,12 @@ impl Master {
     }
 }
 
+/// The name of a two-pass pair's second pass is its first pass's name followed by this
+/// (`NAME/second-pass`): the nodes of the first pass's master face against the face of its
+/// slave nodes (`scene::build_pairs::second_pass`; combined with the first pass into one
+/// interface by `record::interface`).
+pub const SECOND_PASS_SUFFIX: &str = "/second-pass";
+
 /// A node-to-segment contact pair.
 #[derive(Debug, Clone)]
 pub struct ContactPair {

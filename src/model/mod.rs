@@ -9,7 +9,9 @@ pub mod rigid;
 
 use crate::element::material::Material;
 use crate::element::quad::ElementKind;
-pub use contact::{ContactLaw, ContactPair, Enforcement, Master, OwnedVertex, Slave, Smoothing, TransferKind};
+pub use contact::{
+    ContactLaw, ContactPair, Enforcement, Master, OwnedVertex, Slave, Smoothing, TransferKind, SECOND_PASS_SUFFIX,
+};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
 use std::collections::BTreeMap;

@@ -4,6 +4,7 @@
 pub mod atomic_file;
 pub mod background;
 mod failure;
+pub mod interface;
 pub mod mcap;
 pub mod messages;
 mod observer;

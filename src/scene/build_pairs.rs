@@ -4,7 +4,9 @@
 use super::build::{body_index, Ctx};
 use super::types::ContactSpec;
 use super::SceneError;
-use crate::model::{chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave};
+use crate::model::{
+    chain_neighbours, ContactLaw, ContactPair, Master, Model, OwnedVertex, RigidShape, Slave, SECOND_PASS_SUFFIX,
+};
 
 /// Smallest turn (radians) at a joint of a rigid outline that counts as a vertex: a fillet
 /// joined tangentially to its lines has none, a polygon of 1000 facets turns 0.0063 rad.
@@ -66,7 +68,7 @@ pub fn second_pass(m: &Model, pair: &mut ContactPair, slave_body: usize) -> Opti
     nodes.dedup();
     pair.law = halved(pair.law);
     Some(ContactPair {
-        name: format!("{}/second-pass", pair.name),
+        name: format!("{}{SECOND_PASS_SUFFIX}", pair.name),
         slaves: nodes.into_iter().map(Slave::Node).collect(),
         master: face_master(slave_body, face),
         law: pair.law,

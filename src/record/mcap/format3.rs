@@ -5,6 +5,7 @@
 //! that have one; and `/log` twice (contrail's and `foxglove.Log`). Shared by the MCAP sink
 //! and `contrail convert`, so that a converted recording is the one the sink would write.
 
+use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactColumns, PressureColumns};
 use crate::record::mcap::foxglove::{self, SceneEncoder, SceneView};
 use crate::record::mcap::out::{McapOut, OutError};
@@ -101,6 +102,18 @@ impl Format3Writer {
         out.put_with(schemas::POSITIONS, |buf, _| {
             PackedPositions::write_json(buf, positions).map_err(OutError::from)
         })
+    }
+
+    /// The `/interface` messages of an increment (written with its `/positions`).
+    pub fn interfaces<W: Write + Seek>(
+        &mut self,
+        out: &mut McapOut<W>,
+        interfaces: &[InterfaceRecord],
+    ) -> Result<(), OutError> {
+        for i in interfaces {
+            out.put(schemas::INTERFACE, i)?;
+        }
+        Ok(())
     }
 
     /// The reference mesh for Foxglove (once, at the start).

@@ -6,6 +6,7 @@
 //! `schemas/format2/` for validating older recordings. The Foxglove channels embed the
 //! published schemas of `@foxglove/schemas` (see [`crate::record::mcap::foxglove`]).
 
+use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
 use crate::record::mcap::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
 use crate::record::messages::{CrossingMessage, ModelRecord, PackedPositions};
@@ -70,6 +71,7 @@ pub const POSITIONS: &str = "/positions";
 pub const LOG: &str = "/log";
 pub const OUTCOME: &str = "/outcome";
 pub const PRESSURE: &str = "/pressure";
+pub const INTERFACE: &str = "/interface";
 pub const FOXGLOVE_LOG: &str = "/foxglove/log";
 pub const FOXGLOVE_SCENE: &str = "/foxglove/scene";
 pub const FOXGLOVE_REFERENCE: &str = "/foxglove/reference";
@@ -157,6 +159,13 @@ pub const CHANNELS: &[ChannelSpec] = &[
         file: "pressure.schema.json",
         description: "contact pressure against arc length along the master, one per node-slave pair at the increments that have /positions, every field an array over the paired slave nodes",
         schema: Source::Generated(|| schemars::schema_for!(PressureArrays)),
+    },
+    ChannelSpec {
+        topic: INTERFACE,
+        schema_name: "contrail.Interface",
+        file: "interface.schema.json",
+        description: "one per two-pass contact pair at the increments that have /positions: both passes combined into the traction on the first pass's master face (each contact force once), totals and arrays over its nodes: node, s, position, normal, tributary, pressure, shear, state",
+        schema: Source::Generated(|| schemars::schema_for!(InterfaceRecord)),
     },
     ChannelSpec {
         topic: FOXGLOVE_LOG,

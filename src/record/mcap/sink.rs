@@ -11,6 +11,7 @@
 
 use crate::model::Model;
 use crate::record::atomic_file::AtomicFile;
+use crate::record::interface::{interfaces, InterfaceLayout, InterfaceRecord};
 pub use crate::record::mcap::format3::node_of_label;
 use crate::record::mcap::format3::Format3Writer;
 use crate::record::mcap::foxglove::{ScenePoint, SceneView};
@@ -115,6 +116,7 @@ impl Default for McapOptions {
 struct Last {
     positions: PositionsMessage,
     pressure: Vec<PressureRecord>,
+    interfaces: Vec<InterfaceRecord>,
     positions_written: bool,
     /// Its contact points as the scene draws them.
     contact: Vec<ScenePoint>,
@@ -135,6 +137,8 @@ pub struct McapSink<W: Write + Seek> {
     scene_stride: usize,
     /// The model's pressure layout, worked out at the first increment.
     pressure_layout: Option<PressureLayout>,
+    /// The model's two-pass interfaces, worked out at the first increment.
+    interface_layout: Option<InterfaceLayout>,
     last: Option<Last>,
     /// Iterations of the increment under way (with `Iterations::Failed`).
     pending_iterations: Vec<IterationRecord>,
@@ -186,6 +190,7 @@ impl<W: Write + Seek> McapSink<W> {
             format: None,
             scene_stride: 0,
             pressure_layout: None,
+            interface_layout: None,
             last: None,
             pending_iterations: Vec::new(),
         })
@@ -210,6 +215,7 @@ impl<W: Write + Seek> McapSink<W> {
         };
         if !last.positions_written {
             format.positions(&mut self.out, &last.positions, &last.pressure)?;
+            format.interfaces(&mut self.out, &last.interfaces)?;
         }
         if !last.scene_written && self.scene_stride > 0 {
             let view = SceneView {
@@ -387,8 +393,11 @@ impl<W: Write + Seek> McapSink<W> {
             .pressure_layout
             .get_or_insert_with(|| PressureLayout::new(view.model));
         let pressure = profiles(layout, view.model, view.u, rec.t, rec.increment, view.contact);
+        let layout = (self.interface_layout).get_or_insert_with(|| InterfaceLayout::new(view.model));
+        let interfaces = interfaces(layout, view.model, view.u, rec.t, rec.increment, view.contact);
         if positions_now {
             format.positions(&mut self.out, &positions, &pressure)?;
+            format.interfaces(&mut self.out, &interfaces)?;
         }
         // the last increment's positions and scene are written at `finish` if thinned away
         let mut contact = self.last.take().map(|l| l.contact).unwrap_or_default();
@@ -409,6 +418,7 @@ impl<W: Write + Seek> McapSink<W> {
         self.last = Some(Last {
             positions,
             pressure,
+            interfaces,
             positions_written: positions_now,
             contact,
             scene_written: scene_now,

@@ -7,6 +7,7 @@
 //! an MCAP recording; [`RerunSink`] is the observer that feeds it during a run.
 
 use crate::model::Model;
+use crate::record::interface::{interfaces, InterfaceLayout};
 use crate::record::messages::{ModelRecord, PositionsMessage};
 pub use crate::record::rrd::view::{RerunView, FLUSH_TIMEOUT};
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
@@ -131,6 +132,8 @@ pub fn open(targets: &RerunTargets, name: &str) -> Result<RecordingStream, Rerun
 pub struct RerunSink {
     stream: Option<RecordingStream>,
     view: Option<RerunView>,
+    /// The model's two-pass interfaces, worked out at `start`.
+    interfaces: InterfaceLayout,
     name: String,
 }
 
@@ -140,6 +143,7 @@ impl RerunSink {
         RerunSink {
             stream: Some(stream),
             view: None,
+            interfaces: InterfaceLayout::default(),
             name: name.to_string(),
         }
     }
@@ -158,6 +162,7 @@ impl Observer for RerunSink {
             .stream
             .take()
             .ok_or_else(|| ObserverError::new(&self.name, "started twice"))?;
+        self.interfaces = InterfaceLayout::new(model);
         self.view = Some(
             RerunView::new(stream, &ModelRecord::new(model, info.settings.stepping.end))
                 .map_err(|e| ObserverError::new(&self.name, e))?,
@@ -171,8 +176,10 @@ impl Observer for RerunSink {
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         let name = self.name.clone();
         let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
-        self.view()?
-            .increment(rec, Some(&positions), view.contact, view.crossings)
+        let joined = interfaces(&self.interfaces, view.model, view.u, rec.t, rec.increment, view.contact);
+        let v = self.view()?;
+        (v.increment(rec, Some(&positions), view.contact, view.crossings))
+            .and_then(|()| v.interfaces(rec.increment, &joined))
             .map_err(|e| ObserverError::new(&name, e))
     }
     fn log(&mut self, rec: &LogRecord) -> Result<(), ObserverError> {

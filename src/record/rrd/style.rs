@@ -40,6 +40,9 @@ pub const AXES: [u8; 4] = [120, 120, 120, 255];
 /// Frame and mid-lines of the curve view (drawn thinner than the axes).
 pub const GRID: [u8; 4] = [120, 120, 120, 255];
 
+/// The pressure arrows of a two-pass interface: a dark teal.
+pub const PRESSURE: [u8; 4] = [0, 120, 130, 255];
+
 /// Open contact point.
 pub const OPEN: [u8; 4] = [140, 140, 140, 255];
 /// Closed point of a frictionless pair.

@@ -7,12 +7,13 @@
 //! Newton iterations, final residual, load level; timeline `increment` only) and `/events/**`.
 
 use crate::format::{plain, sig};
+use crate::record::interface::InterfaceRecord;
 use crate::record::messages::{ModelRecord, PositionsMessage};
 use crate::record::rrd::curve::Curve;
 use crate::record::rrd::sink::RerunError;
 use crate::record::rrd::style::{
     point_colour, point_label, relative_residual, traction_arrows, TractionArrows, ARROW_FRACTION,
-    ARROW_OFFSET_FRACTION, MESH, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
+    ARROW_OFFSET_FRACTION, MESH, PRESSURE, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
 };
 use crate::record::{
     ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome,
@@ -301,6 +302,53 @@ impl RerunView {
                     )
                     .map_err(e)?;
             }
+        }
+        Ok(())
+    }
+
+    /// The two-pass interfaces of an increment (after [`RerunView::increment`]): under
+    /// `scene/interface/NAME`, the nodes of the first pass's master face coloured by the
+    /// interface's state (`nodes`) and its pressure as arrows into that face, the largest
+    /// as long as a traction arrow at the Coulomb limit (`pressure`).
+    pub fn interfaces(&mut self, increment: usize, interfaces: &[InterfaceRecord]) -> Result<(), RerunError> {
+        let e = stream_err;
+        if interfaces.is_empty() {
+            return Ok(());
+        }
+        self.at_increment(increment);
+        for f in interfaces {
+            let mu = self.model.contacts.get(f.first_pass).map_or(0.0, |p| p.mu);
+            let base = format!("scene/interface/{}", f.name);
+            self.rec
+                .log(
+                    format!("{base}/nodes"),
+                    &rerun::Points2D::new(f.position.iter().map(|p| p32(*p)))
+                        .with_colors(f.state.iter().map(|s| point_colour(*s, mu)))
+                        .with_radii([rerun::Radius::new_ui_points(2.5)]),
+                )
+                .map_err(e)?;
+            let top = f
+                .pressure
+                .iter()
+                .filter(|p| p.is_finite())
+                .fold(0.0, |a: f64, p| a.max(p.abs()));
+            let scale = if top > 0.0 { self.arrow_len / top } else { 0.0 };
+            let vectors = (f.normal.iter().zip(&f.pressure)).map(|(n, p)| {
+                if p.is_finite() {
+                    p32([-n[0] * p * scale, -n[1] * p * scale])
+                } else {
+                    [0.0; 2]
+                }
+            });
+            self.rec
+                .log(
+                    format!("{base}/pressure"),
+                    &rerun::Arrows2D::from_vectors(vectors)
+                        .with_origins(f.position.iter().map(|p| p32(*p)))
+                        .with_colors([PRESSURE])
+                        .with_radii([rerun::Radius::new_ui_points(1.5)]),
+                )
+                .map_err(e)?;
         }
         Ok(())
     }
