@@ -4,4 +4,5 @@ pub mod body_force;
 mod eas_linear;
 pub mod fields;
 pub mod material;
+pub mod material_models;
 pub mod quad;
