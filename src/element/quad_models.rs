@@ -22,7 +22,9 @@
 //!   condition `∫ M dξ dη = 0` by which EAS passes the patch test (Simo & Rifai 1990, §3,
 //!   with `j R` the volume Jacobian of the axisymmetric element). Without it the linear
 //!   radial field `u_r = a r, u_z = b z` (constant stress, `S_rr = S_θθ`) is not
-//!   reproduced.
+//!   reproduced (measured with the factor taken out: the interior displacements of the
+//!   MacNeal–Harder patch touching the axis off by 9.9e-6 at `a = 1e-3`, ≈ 4 % of `u`; the
+//!   axial force of a stretched hollow cylinder 0.023 % low; with it both to round-off).
 //!
 //! A node on the axis (`R_I = 0`) is admissible (the Gauss points have `R > 0`); its radial
 //! displacement must be zero, which the kernel does not impose: the model is to fix
@@ -79,7 +81,7 @@ impl ModelGeometry {
                 ModelGeometry::PlaneStress { thickness }
             }
             Kinematics::Axisymmetric => {
-                if let Some(r) = x.iter().map(|p| p[0]).find(|r| !(*r >= 0.0)) {
+                if let Some(r) = x.iter().map(|p| p[0]).find(|r| r.is_nan() || *r < 0.0) {
                     return Err(ElementError::NegativeRadius(r));
                 }
                 let radius = std::array::from_fn(|q| shape(q).iter().zip(x).map(|(n, p)| n * p[0]).sum());
@@ -177,8 +179,8 @@ fn axisymmetric_points(
             return Err(ElementError::Inverted(stretch));
         }
         p.ec[3] = ur_r + 0.5 * ur_r * ur_r;
-        for i in 0..4 {
-            p.n_r[i] = n[i] / rq;
+        for (i, ni) in n.iter().enumerate() {
+            p.n_r[i] = ni / rq;
             p.b[(3, 2 * i)] = stretch * p.n_r[i];
         }
     }
@@ -202,6 +204,8 @@ type Law<'a, const NS: usize> =
 /// One pass at the enhanced parameters `al` (all terms; `penalty` on `α` as in plane strain):
 /// `R_u = Σ w Bᵀ S`, `K_uu = Σ w (Bᵀ D B + δ_ab ∇N_I·S ∇N_J [+ δ_ar δ_br S_θθ N_I N_J/R²])`,
 /// `K_uα = Σ w Bᵀ D G`, `K_αα = Σ w Gᵀ D G`, `R_α = Σ w Gᵀ S`, `Π = Σ w W`.
+// index loops: node pairs walk the gradients, the hoop factors and the DOFs together
+#[allow(clippy::needless_range_loop)]
 fn pass<const NS: usize>(
     law: Law<NS>,
     pts: &[Point<NS>; 4],
