@@ -6,4 +6,5 @@ pub mod fields;
 pub mod hex8;
 pub mod material;
 pub mod material3d;
+pub mod material_models;
 pub mod quad;

@@ -68,6 +68,12 @@ pub enum ElementError {
     /// The element is folded: `det F ≤ 0` at a Gauss point of the compatible deformation.
     #[error("inverted element: det F = {0:.3e} ≤ 0 at a Gauss point")]
     Inverted(f64),
+    /// A plane-stress thickness that is not positive and finite.
+    #[error("plane-stress thickness {0:.3e} is not positive")]
+    BadThickness(f64),
+    /// An axisymmetric element with a node at `x = r < 0` (the axis is `x = 0`).
+    #[error("axisymmetric element with a node at radius r = {0:.3e} < 0")]
+    NegativeRadius(f64),
 }
 
 /// The smallest `det F` of the compatible deformation over the Gauss points of an element
@@ -144,6 +150,8 @@ pub struct QuadGeometry {
     /// Closed-form `α(u)` for one material with a constant tangent (see
     /// [`QuadGeometry::for_material`]).
     linear: Option<LinearEas>,
+    /// Plane strain, plane stress or axisymmetric (`quad_models.rs`).
+    model: ModelGeometry,
 }
 
 impl QuadGeometry {
@@ -201,6 +209,7 @@ impl QuadGeometry {
             axes: [[j0[(0, 0)], j0[(1, 0)]], [j0[(0, 1)], j0[(1, 1)]]],
             penalty: [0.0; 4],
             linear: None,
+            model: ModelGeometry::PlaneStrain,
         })
     }
 
@@ -214,6 +223,31 @@ impl QuadGeometry {
             geo.linear = LinearEas::new(material, &geo.gp.map(|q| (q.dv, q.g)), &geo.penalty);
         }
         Ok(geo)
+    }
+
+    /// The geometry of an element in the given setting: [`QuadGeometry::for_material`] in
+    /// plane strain; in plane stress and the axisymmetric setting the same reference
+    /// geometry with the setting's data (`quad_models.rs`; no closed-form `α`: the local
+    /// Newton iteration is used). Fails also on a non-positive thickness and on a node at
+    /// `r < 0`.
+    pub fn with_kinematics(
+        kind: ElementKind,
+        material: &Material,
+        kinematics: Kinematics,
+        x: &[[f64; 2]; 4],
+    ) -> Result<Self, ElementError> {
+        if kinematics == Kinematics::PlaneStrain {
+            return Self::for_material(kind, material, x);
+        }
+        let mut geo = Self::new(kind, x)?;
+        geo.model = ModelGeometry::new(kinematics, x)?;
+        Ok(geo)
+    }
+
+    /// The setting of the element (plane strain unless made by
+    /// [`QuadGeometry::with_kinematics`]).
+    pub fn kinematics(&self) -> Kinematics {
+        self.model.kinematics()
     }
 }
 
@@ -499,6 +533,9 @@ pub fn quad_residual_tangent_with(
     if kind == ElementKind::Q4EasSafe {
         return stab::compression_blend(material, geo, u, alpha, r, k);
     }
+    if !matches!(geo.model, ModelGeometry::PlaneStrain) {
+        return models::residual_tangent(kind == ElementKind::Q4Eas, material, geo, u, alpha, r, k);
+    }
     let kin = [
         kinematics(&geo.gp[0], u),
         kinematics(&geo.gp[1], u),
@@ -606,6 +643,11 @@ mod stab;
 use stab::stabilised;
 pub use stab::{hourglass_holds, EAS_STABILISATION};
 
+#[path = "quad_models.rs"]
+mod models;
+pub use models::Kinematics;
+use models::ModelGeometry;
+
 #[path = "quad_output.rs"]
 mod output;
 pub use output::{quad_centre_deformation_gradient, quad_centre_stress};
@@ -613,3 +655,15 @@ pub use output::{quad_centre_deformation_gradient, quad_centre_stress};
 #[cfg(test)]
 #[path = "quad_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "quad_model_mesh.rs"]
+mod model_mesh;
+
+#[cfg(test)]
+#[path = "quad_axisym_tests.rs"]
+mod axisym_tests;
+
+#[cfg(test)]
+#[path = "quad_plane_stress_tests.rs"]
+mod plane_stress_tests;

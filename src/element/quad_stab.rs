@@ -245,6 +245,9 @@ impl QuadGeometry {
 
     /// `K⁰_mm`: the stiffness of enhanced mode `m` with the material's initial tangent.
     pub(crate) fn mode_stiffness(&self, material: &Material, m: usize) -> f64 {
+        if !matches!(self.model, super::ModelGeometry::PlaneStrain) {
+            return super::models::mode_stiffness(self, material, m);
+        }
         let Ok((_, d0)) = material.stress_tangent(&Vector3::zeros()) else {
             return 0.0;
         };
