@@ -60,7 +60,7 @@ impl Material {
     /// `(S, D, W)` of the 3D law for a strain without out-of-plane shear,
     /// `e = [E11, E22, 2E12, E33]` (the axisymmetric `[E_rr, E_zz, 2E_rz, E_θθ]`); see the
     /// module documentation for the formulas.
-    pub fn stress_tangent_3d(&self, e: &Vector4<f64>) -> Result<(Vector4<f64>, Matrix4<f64>, f64), MaterialError> {
+    pub fn stress_tangent_4(&self, e: &Vector4<f64>) -> Result<(Vector4<f64>, Matrix4<f64>, f64), MaterialError> {
         match *self {
             Material::SaintVenantKirchhoff { lambda, mu } => {
                 let tr = e[0] + e[1] + e[3];
@@ -127,7 +127,7 @@ impl Material {
                 0.5 * (t.exp() - 1.0)
             }
         };
-        let (s, d, w) = self.stress_tangent_3d(&Vector4::new(e[0], e[1], e[2], e33))?;
+        let (s, d, w) = self.stress_tangent_4(&Vector4::new(e[0], e[1], e[2], e33))?;
         let mut tangent = Matrix3::zeros();
         for a in 0..3 {
             for b in 0..3 {
@@ -162,14 +162,14 @@ mod tests {
     fn the_3d_law_matches_finite_differences() {
         let e = Vector4::new(0.03, -0.02, 0.05, 0.04);
         for m in materials() {
-            let (s, d, _) = m.stress_tangent_3d(&e).unwrap();
+            let (s, d, _) = m.stress_tangent_4(&e).unwrap();
             let h = 1e-6;
             for b in 0..4 {
                 let (mut ep, mut em) = (e, e);
                 ep[b] += h;
                 em[b] -= h;
-                let (sp, _, wp) = m.stress_tangent_3d(&ep).unwrap();
-                let (sm, _, wm) = m.stress_tangent_3d(&em).unwrap();
+                let (sp, _, wp) = m.stress_tangent_4(&ep).unwrap();
+                let (sm, _, wm) = m.stress_tangent_4(&em).unwrap();
                 assert!(((wp - wm) / (2.0 * h) - s[b]).abs() < 1e-6 * s.norm(), "{m:?} S[{b}]");
                 let ds = (sp - sm) / (2.0 * h);
                 for a in 0..4 {
@@ -185,7 +185,7 @@ mod tests {
     fn the_3d_law_with_no_out_of_plane_strain_is_plane_strain() {
         let e = Vector3::new(0.03, -0.02, 0.05);
         for m in materials() {
-            let (s, d, w) = m.stress_tangent_3d(&Vector4::new(e[0], e[1], e[2], 0.0)).unwrap();
+            let (s, d, w) = m.stress_tangent_4(&Vector4::new(e[0], e[1], e[2], 0.0)).unwrap();
             let (s2, d2) = m.stress_tangent(&e).unwrap();
             assert!((Vector3::new(s[0], s[1], s[2]) - s2).norm() < 1e-12 * s2.norm());
             assert!((d.fixed_view::<3, 3>(0, 0) - d2).norm() < 1e-12 * d2.norm());
@@ -203,7 +203,7 @@ mod tests {
         for e in [Vector3::new(0.03, -0.02, 0.05), Vector3::new(-0.2, 0.1, -0.15)] {
             for m in materials() {
                 let st = m.plane_stress_state(&e).unwrap();
-                let (s4, _, _) = m.stress_tangent_3d(&Vector4::new(e[0], e[1], e[2], st.e33)).unwrap();
+                let (s4, _, _) = m.stress_tangent_4(&Vector4::new(e[0], e[1], e[2], st.e33)).unwrap();
                 assert!(s4[3].abs() < 1e-12 * st.stress.norm(), "{m:?}: S33 = {}", s4[3]);
                 let h = 1e-6;
                 for b in 0..3 {
@@ -238,7 +238,7 @@ mod tests {
         let l1: f64 = 1.3;
         let s22 = |l2: f64| {
             let e = Vector4::new(0.5 * (l1 * l1 - 1.0), 0.5 * (l2 * l2 - 1.0), 0.0, 0.5 * (l2 * l2 - 1.0));
-            m.stress_tangent_3d(&e).unwrap().0
+            m.stress_tangent_4(&e).unwrap().0
         };
         let (mut lo, mut hi) = (0.5, 1.0);
         for _ in 0..200 {

@@ -308,7 +308,7 @@ pub(super) fn residual_tangent(
             condensed(&law, &plane_stress_points(geo, u), eas, &geo.penalty, alpha)?
         }
         ModelGeometry::Axisymmetric { radius, .. } => {
-            let law = |e: &Vector4<f64>| Ok(material.stress_tangent_3d(e)?);
+            let law = |e: &Vector4<f64>| Ok(material.stress_tangent_4(e)?);
             condensed(&law, &axisymmetric_points(geo, u, &radius)?, eas, &geo.penalty, alpha)?
         }
     };
@@ -326,7 +326,7 @@ pub(super) fn mode_stiffness(geo: &QuadGeometry, material: &Material, m: usize) 
     let d0 = match geo.model {
         ModelGeometry::PlaneStress { .. } => material.plane_stress_state(&Vector3::zeros()).map(|s| s.tangent),
         _ => material
-            .stress_tangent_3d(&Vector4::zeros())
+            .stress_tangent_4(&Vector4::zeros())
             .map(|(_, d, _)| d.fixed_view::<3, 3>(0, 0).into_owned()),
     };
     let Ok(d0) = d0 else { return 0.0 };
