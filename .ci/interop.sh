@@ -76,6 +76,8 @@ record half-disc --quiet --vtu-every 2 --out "$TMP/hd2.pvd" --out "$TMP/hd2.csv"
 # every increment with a Foxglove scene, and every contact point written
 record strip-channel --quiet --set stepping.increments=60 --set fix.1.value=-0.3 --scene-every 1 \
     --all-points --out "$TMP/scenes.mcap"
+# a two-pass pair: its /interface channel
+record contact-patch --quiet --out "$TMP/patch.mcap"
 
 echo "== interop: the published Foxglove schemas"
 # the package ships its JSON Schemas as a module (dist/jsonschema): written out as files
@@ -93,7 +95,7 @@ echo "== interop: mcap + jsonschema"
 "$VENV/bin/python" .ci/interop.py --schemas schemas --foxglove "$FOXGLOVE_DIR" \
     "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
     "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap" "$TMP/scenes.mcap" \
-    recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
+    "$TMP/patch.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
 
 echo "== interop: the numpy snippet of docs/recording.md"
 # the python block after the marker line, run as it is on a recording
