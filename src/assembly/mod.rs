@@ -28,6 +28,11 @@ pub struct Timings {
     pub assemblies: usize,
     /// Assemblies that computed the tangent as well.
     pub tangent_assemblies: usize,
+    /// Assemblies made without the tangent because Newton expected the iterate to converge
+    /// (`solver::newton`), and those of them whose iterate did not, so that it was
+    /// assembled again with the tangent.
+    pub tangents_skipped: usize,
+    pub tangents_missed: usize,
     pub factorizations: usize,
     /// Threads the run could use for its element kernels (the calling one included), and
     /// the assemblies whose kernels ran on them (the others ran on the calling thread alone,

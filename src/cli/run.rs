@@ -465,8 +465,8 @@ fn time_split(s: &contrail::solver::RunSummary) -> String {
         .map(|(k, v)| format!("{k} {:.3} s ({:.0} %)", v, 100.0 * v / total))
         .collect();
     out.push(format!(
-        "{} assemblies ({} with the tangent), {} factorisations",
-        t.assemblies, t.tangent_assemblies, t.factorizations
+        "{} assemblies ({} with the tangent; {} without, expected to converge, {} of them wrongly), {} factorisations",
+        t.assemblies, t.tangent_assemblies, t.tangents_skipped, t.tangents_missed, t.factorizations
     ));
     out.push(match t.threads {
         0 | 1 => "one thread".to_string(),

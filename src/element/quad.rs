@@ -259,6 +259,8 @@ struct GaussKin {
     b: [[f64; 8]; 3],
     /// `E_c = ½ (FᵀF − I)` in Voigt form with engineering shear
     ec: [f64; 3],
+    /// `det F`
+    det_f: f64,
 }
 
 fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
@@ -285,6 +287,7 @@ fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
     GaussKin {
         b,
         ec: [0.5 * (c11 - 1.0), 0.5 * (c22 - 1.0), c12],
+        det_f: f[0][0] * f[1][1] - f[0][1] * f[1][0],
     }
 }
 
@@ -317,8 +320,6 @@ struct Sums {
     kaa: [[f64; 4]; 4],
     ra: [f64; 4],
     energy: f64,
-    /// `max_q ‖D_q‖ dv_q`, the scale of `K_αα` for the convergence test
-    scale: f64,
 }
 
 impl Sums {
@@ -330,7 +331,6 @@ impl Sums {
             kaa: [[0.0; 4]; 4],
             ra: [0.0; 4],
             energy: 0.0,
-            scale: 0.0,
         }
     }
 }
@@ -342,10 +342,13 @@ struct Wanted {
     eas: bool,
     /// `K_αα` (not needed when it is known in closed form, [`LinearEas`]).
     kaa: bool,
-    /// `R_u`, `K_uα` and the energy.
+    /// `R_u` and the energy.
     full: bool,
     /// `K_uu`.
     k: bool,
+    /// `K_uα` (with `full`): for the condensed tangent, and for the condensed residual
+    /// unless `α` is known in closed form ([`LinearEas`]: `R_α` is then round-off).
+    kua: bool,
 }
 
 /// One pass over the Gauss points at the enhanced parameters `al`: `R_α`, `K_αα` (when
@@ -365,6 +368,7 @@ fn gauss_pass(
         kaa,
         full,
         k: want_k,
+        kua,
     } = wanted;
     let mut t = Sums::new();
     // a constant tangent (St. Venant–Kirchhoff) once, not per Gauss point: S = D E, the
@@ -375,7 +379,11 @@ fn gauss_pass(
         let en = enhanced(&gq.g, al);
         let e = Vector3::new(kq.ec[0] + en[0], kq.ec[1] + en[1], kq.ec[2] + en[2]);
         let (s, d) = match &constant {
-            Some(d) => (d * e, *d),
+            // `D e` written out (nalgebra's generic product is not inlined here)
+            Some(d) => (
+                Vector3::from_fn(|a, _| d[(a, 0)] * e[0] + d[(a, 1)] * e[1] + d[(a, 2)] * e[2]),
+                *d,
+            ),
             None => material.stress_tangent(&e)?,
         };
         let b = &kq.b;
@@ -383,9 +391,11 @@ fn gauss_pass(
             let g = &gq.g;
             // D G (3×4)
             let mut dg = [[0.0; 4]; 3];
-            for (a, row) in dg.iter_mut().enumerate() {
-                for (m, v) in row.iter_mut().enumerate() {
-                    *v = d[(a, 0)] * g[0][m] + d[(a, 1)] * g[1][m] + d[(a, 2)] * g[2][m];
+            if kaa || (full && kua) {
+                for (a, row) in dg.iter_mut().enumerate() {
+                    for (m, v) in row.iter_mut().enumerate() {
+                        *v = d[(a, 0)] * g[0][m] + d[(a, 1)] * g[1][m] + d[(a, 2)] * g[2][m];
+                    }
                 }
             }
             for m in 0..4 {
@@ -396,8 +406,7 @@ fn gauss_pass(
                     }
                 }
             }
-            t.scale = t.scale.max(d.norm() * dv);
-            if full {
+            if full && kua {
                 for (i, row) in t.kua.iter_mut().enumerate() {
                     for (m, v) in row.iter_mut().enumerate() {
                         *v += dv * (b[0][i] * dg[0][m] + b[1][i] * dg[1][m] + b[2][i] * dg[2][m]);
@@ -523,9 +532,12 @@ pub fn quad_residual_tangent_with(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
-    let det_f = min_det_f(geo, u);
-    if det_f <= 0.0 || !det_f.is_finite() {
-        return Err(ElementError::Inverted(det_f));
+    let split = matches!(kind, ElementKind::Q4EasStab | ElementKind::Q4EasSafe);
+    if split || !matches!(geo.model, ModelGeometry::PlaneStrain) {
+        let det_f = min_det_f(geo, u);
+        if det_f <= 0.0 || !det_f.is_finite() {
+            return Err(ElementError::Inverted(det_f));
+        }
     }
     if kind == ElementKind::Q4EasStab {
         return stabilised(material, geo, u, alpha, r, k);
@@ -542,6 +554,11 @@ pub fn quad_residual_tangent_with(
         kinematics(&geo.gp[2], u),
         kinematics(&geo.gp[3], u),
     ];
+    // the check of `min_det_f`, on the deformation gradients just formed (same values)
+    let det_f = kin.iter().map(|q| q.det_f).fold(f64::INFINITY, f64::min);
+    if det_f <= 0.0 || !det_f.is_finite() {
+        return Err(ElementError::Inverted(det_f));
+    }
     let eas = kind == ElementKind::Q4Eas;
     // a constant-tangent material: α(u) in closed form, the first pass is already full
     let linear = geo.linear.as_ref().filter(|l| eas && l.material == *material);
@@ -564,6 +581,7 @@ pub fn quad_residual_tangent_with(
             kaa: linear.is_none(),
             full,
             k: want_k,
+            kua: want_k || linear.is_none(),
         };
         let t = gauss_pass(material, geo, &kin, &al, wanted)?;
         if !eas {
@@ -596,7 +614,7 @@ pub fn quad_residual_tangent_with(
         it += 1;
     };
     if eas {
-        condense(&mut t, &inv, want_k);
+        condense(&mut t, &inv, want_k, linear.is_none());
         alpha.copy_from_slice(&al);
     }
     if let Some(kout) = k {
@@ -612,27 +630,29 @@ pub fn quad_residual_tangent_with(
 }
 
 /// Static condensation of the enhanced-strain parameters at a converged `α`:
-/// `R* = R_u − K_uα (K_αα⁻¹ R_α)` into `t.ru` and, with `want_k`, `K* = K_uu − W K_αu` with
-/// `W = K_uα K_αα⁻¹` into the upper triangle of `t.kuu` (`inv = K_αα⁻¹`).
+/// `R* = R_u − K_uα (K_αα⁻¹ R_α)` into `t.ru` (with `residual`) and, with `want_k`,
+/// `K* = K_uu − W K_αu` with `W = K_uα K_αα⁻¹` into the upper triangle of `t.kuu`
+/// (`inv = K_αα⁻¹`). With `α` in closed form ([`LinearEas`]) `R_α` is the round-off of that
+/// formula, and so is its correction of `R_u`, which is then left out (`residual` false):
+/// the residual assembled without the tangent needs no `K_uα`.
 #[inline]
-fn condense(t: &mut Sums, inv: &Matrix4<f64>, want_k: bool) {
-    let mut y = [0.0; 4];
-    for (m, v) in y.iter_mut().enumerate() {
-        *v = (0..4).map(|n| inv[(m, n)] * t.ra[n]).sum();
-    }
-    for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
-        *ri -= (0..4).map(|m| ki[m] * y[m]).sum::<f64>();
+fn condense(t: &mut Sums, inv: &Matrix4<f64>, want_k: bool, residual: bool) {
+    // plain arrays (row-major `inv[m][n]`): the sums below in the same order as before
+    let inv: [[f64; 4]; 4] = std::array::from_fn(|m| std::array::from_fn(|n| inv[(m, n)]));
+    let dot = |a: &[f64; 4], b: &[f64; 4]| ((a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]) + a[3] * b[3];
+    if residual {
+        let y: [f64; 4] = std::array::from_fn(|m| dot(&inv[m], &t.ra));
+        for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
+            *ri -= dot(ki, &y);
+        }
     }
     if want_k {
-        let mut w = [[0.0; 4]; 8];
-        for (wi, ki) in w.iter_mut().zip(&t.kua) {
-            for (m, v) in wi.iter_mut().enumerate() {
-                *v = (0..4).map(|n| ki[n] * inv[(n, m)]).sum();
-            }
-        }
+        // K_αα⁻¹ is symmetric up to round-off; its columns are taken as stored
+        let col: [[f64; 4]; 4] = std::array::from_fn(|m| std::array::from_fn(|n| inv[n][m]));
+        let w: [[f64; 4]; 8] = std::array::from_fn(|i| std::array::from_fn(|m| dot(&t.kua[i], &col[m])));
         for (i, wi) in w.iter().enumerate() {
             for j in i..8 {
-                t.kuu[i][j] -= (0..4).map(|m| wi[m] * t.kua[j][m]).sum::<f64>();
+                t.kuu[i][j] -= dot(wi, &t.kua[j]);
             }
         }
     }

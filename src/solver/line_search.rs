@@ -86,8 +86,10 @@ impl Iterate<'_> {
                 0
             }
         };
+        let tangent = !self.expects_convergence();
         self.move_to(1.0);
-        match self.assemble(true) {
+        match self.assemble(tangent) {
+            Ok(()) if !tangent => self.tangent_skipped(),
             Ok(()) => {}
             Err(f) if inadmissible(&f) => {
                 self.ws.watchdog.relaxed = None;

@@ -114,6 +114,11 @@ pub struct Workspace {
     pub(super) front_iterations: usize,
     /// The globalisation's saved iterate ([`super::line_search`]).
     pub(super) watchdog: super::line_search::Watchdog,
+    /// What the last converged attempt showed of the rate of convergence: whether it was
+    /// accepted at its start, and `‖R₁‖/‖R₀‖` of its first correction
+    /// ([`Iterate::expects_convergence`]).
+    pub(super) last_start_accepted: bool,
+    pub(super) last_first_rate: Option<f64>,
 }
 
 /// Which increment is solved, to what time, and from what start.
@@ -204,6 +209,9 @@ pub(super) struct Iterate<'a> {
     pub(super) ws: &'a mut Workspace,
     pub(super) t: f64,
     norms: Norms,
+    /// The iterate's assembly was made without the tangent (it was expected to converge):
+    /// how to repeat it with the tangent — the warm start and the kink it was made with.
+    missing_tangent: Option<(bool, Kink)>,
 }
 
 impl<'a> Iterate<'a> {
@@ -231,8 +239,13 @@ impl<'a> Iterate<'a> {
         // the first correction of an attempt starts from the converged active set: the
         // points decide by their force unknowns alone (see `contact::decision`)
         state.contact.set_warm_start(true);
-        assemble_at(model, asm, state, target.t, true)?;
+        // an increment like the last one, which its start already satisfied, is expected to
+        // be accepted at its start too: no tangent unless it must iterate
+        let skip = target.attempt == 0 && ws.last_start_accepted;
+        assemble_at(model, asm, state, target.t, !skip)?;
         state.contact.set_warm_start(false);
+        let missing_tangent = skip.then_some((true, state.contact.kink()));
+        asm.timings.tangents_skipped += usize::from(skip);
         ws.watch.start(&state.contact);
         let fref = match target.reference_floor {
             f if f > 0.0 => f,
@@ -251,6 +264,7 @@ impl<'a> Iterate<'a> {
             ws,
             t: target.t,
             norms,
+            missing_tangent,
         })
     }
 
@@ -283,6 +297,10 @@ impl<'a> Iterate<'a> {
             _ => None,
         };
         if let Some(by) = accepted {
+            self.ws.last_start_accepted = k == 0;
+            if let [r0, r1, ..] = self.ws.residuals[..] {
+                self.ws.last_first_rate = Some(r1 / r0);
+            }
             self.state.contact.adopt_forces();
             return Ok(Some(self.converged(k, by)));
         }
@@ -328,6 +346,7 @@ impl<'a> Iterate<'a> {
     /// Solve for the correction `Δu = −K⁻¹R`, linearise the force unknowns along it, and
     /// search along it. Returns the correction's energy norm `|Δu·R|` and the step taken.
     fn correct(&mut self) -> Result<(f64, f64), NewtonFailure> {
+        self.add_missing_tangent()?;
         self.solve_correction()?;
         self.start_correction();
         let ws = &mut *self.ws;
@@ -339,6 +358,59 @@ impl<'a> Iterate<'a> {
         let step = self.globalise()?;
         self.state.contact.set_kink(Kink::Open);
         Ok((energy, step))
+    }
+
+    /// Whether the iterate a full step along the correction just solved reaches is expected
+    /// to pass the convergence test, so that its assembly needs no tangent. The residual is
+    /// predicted at the rate of the last correction, `‖R_{k+1}‖ ≈ (‖R_k‖/‖R_{k−1}‖) ‖R_k‖`
+    /// (an overestimate while convergence is quadratic; for the first correction, the rate
+    /// of the last converged attempt's first), and judged as [`Self::test_convergence`]
+    /// will judge it. The answer is the same either way: a wrong guess costs one assembly
+    /// without the tangent before the tangent is assembled.
+    pub(super) fn expects_convergence(&self) -> bool {
+        let r = &self.ws.residuals;
+        let rate = match r[..] {
+            [] => return false,
+            [_] => match self.ws.last_first_rate {
+                Some(rate) => rate,
+                None => return false,
+            },
+            [.., a, b] => b / a,
+        };
+        let Some(&rn) = r.last() else { return false };
+        let predicted = rate * rn;
+        if !(rate < 1.0 && predicted.is_finite()) {
+            return false;
+        }
+        let floor = self.asm.roundoff();
+        let energy_ok = self.norms.e_last <= self.settings.energy_tol * self.norms.e0.max(f64::MIN_POSITIVE);
+        predicted <= floor || (energy_ok && predicted <= self.norms.tol.max(floor))
+    }
+
+    /// Note that the assembly just made at the iterate lacks the tangent.
+    pub(super) fn tangent_skipped(&mut self) {
+        self.missing_tangent = Some((false, self.state.contact.kink()));
+        self.asm.timings.tangents_skipped += 1;
+    }
+
+    /// The iterate was expected to converge and did not: assemble it again, with the
+    /// tangent, as it was assembled (same warm start and kink).
+    fn add_missing_tangent(&mut self) -> Result<(), NewtonFailure> {
+        let Some((warm, kink)) = self.missing_tangent.take() else {
+            return Ok(());
+        };
+        self.asm.timings.tangents_missed += 1;
+        let now = self.state.contact.kink();
+        self.state.contact.set_kink(kink);
+        self.state.contact.set_warm_start(warm);
+        let assembled = self.assemble(true);
+        self.state.contact.set_warm_start(false);
+        self.state.contact.set_kink(now);
+        assembled?;
+        self.asm.free_residual(&mut self.ws.r);
+        let merit = self.asm.merit(&self.state.contact);
+        *self.ws.merits.last_mut().expect("the iterate was tested") = merit;
+        Ok(())
     }
 
     /// Keep the iterate the correction in `ws.du` starts from, and the force unknowns at its
