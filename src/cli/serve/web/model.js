@@ -45,7 +45,7 @@ const ModelView = (() => {
       playing: false, magnify: 1, arrows: true, requests: 0, frame: null, loadedAt: 0, follow: true };
     const $ = (s) => root.querySelector(s);
     v.canvas = $("#model-canvas");
-    $("#model-slider").addEventListener("input", (e) => { v.follow = false; goTo(v, +e.target.value); });
+    $("#model-slider").addEventListener("input", (e) => { v.follow = false; pause(v); goTo(v, +e.target.value); });
     $("#model-play").addEventListener("click", () => (v.playing ? pause(v) : play(v)));
     $("#model-magnify").addEventListener("change", (e) => { v.magnify = +e.target.value; redraw(v); });
     $("#model-arrows").addEventListener("change", (e) => { v.arrows = e.target.checked; redraw(v); });
@@ -112,7 +112,7 @@ const ModelView = (() => {
     v.follow = false;
     v.root.querySelector("#model-play").textContent = "❚❚ pause";
     if (v.inc >= last) await goTo(v, 0);
-    while (v.playing && v.inc < last) {
+    while (v.playing && v.inc < last && v.root.isConnected) {
       const t0 = performance.now(), next = v.inc + 1;
       for (let k = 1; k <= 3 && next + k <= last; k++) frame(v, next + k).catch(() => {});
       await goTo(v, next);
