@@ -39,9 +39,9 @@ fn with_a_token_every_request_needs_it() {
     }
     let (s, _, _) = srv.bytes("/api/health?token=s3cret-token", &[]);
     assert_eq!(s, 200);
-    // the page (`/?token=`) loads its script and style sheet without the token: the same
+    // the page (`/?token=`) loads its scripts and style sheet without the token: the same
     // files for every service, holding no data
-    for path in ["/app.js", "/style.css"] {
+    for path in ["/app.js", "/model.js", "/style.css"] {
         let (s, _, h) = srv.bytes(path, &[]);
         assert_eq!(s, 200, "{path}");
         assert!(!h["content-type"].to_str().unwrap().contains("json"), "{path}");

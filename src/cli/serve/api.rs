@@ -6,7 +6,7 @@ use super::catalogue::{is_final, Filter, RunRow, SORTS, STATUSES};
 use super::errors::{check_id, ApiError};
 use super::state::Service;
 use super::submit::{catalogue, check_run, check_sweep, RunRequest, SweepRequest};
-use super::{events, files, web};
+use super::{events, files, model, web};
 use axum::extract::{Path, Query, Request, State};
 use axum::handler::Handler;
 use axum::http::StatusCode;
@@ -46,6 +46,7 @@ pub fn routes() -> Routes {
     }
     .get("/", web::index)
     .get("/app.js", web::script)
+    .get("/model.js", web::model_script)
     .get("/style.css", web::style)
     .get("/api/health", health)
     .get("/api/scenes", scenes)
@@ -61,6 +62,8 @@ pub fn routes() -> Routes {
     .get("/api/runs/{id}/curve.csv", files::curve_csv)
     .get("/api/runs/{id}/curve.svg", files::curve_svg)
     .get("/api/runs/{id}/scene", files::scene)
+    .get("/api/runs/{id}/model", model::model)
+    .get("/api/runs/{id}/model/{increment}", model::frame)
     .get("/api/diff", files::diff)
 }
 

@@ -9,6 +9,8 @@ mod errors;
 mod events;
 mod files;
 mod live;
+mod model;
+mod model_json;
 mod slurm;
 mod state;
 mod submit;

@@ -3,6 +3,7 @@
 
 use super::catalogue::Catalogue;
 use super::live::Live;
+use super::model::Recordings;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Condvar, Mutex};
@@ -71,6 +72,8 @@ pub struct Service {
     pub threads_per_run: usize,
     pub token: Option<String>,
     pub limits: Limits,
+    /// Recordings parsed for the model view (a small cache).
+    pub recordings: Recordings,
     stopping: AtomicBool,
     work: (Mutex<u64>, Condvar),
 }
@@ -87,6 +90,7 @@ impl Service {
             threads_per_run: 1,
             token: None,
             limits: Limits::default(),
+            recordings: Recordings::default(),
             stopping: AtomicBool::new(false),
             work: (Mutex::new(0), Condvar::new()),
         })

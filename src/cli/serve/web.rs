@@ -1,12 +1,13 @@
-//! The web page: one HTML file, its script and its style sheet, embedded in the binary (no
-//! build step). The page reads the JSON API and follows `/api/events`.
+//! The web page: one HTML file, its scripts (the page's, and the model view's) and its style
+//! sheet, embedded in the binary (no build step). The page reads the JSON API and follows
+//! `/api/events`.
 
 use axum::http::header;
 use axum::response::IntoResponse;
 
-/// The paths served without the token: the page's script and style sheet, the same for
+/// The paths served without the token: the page's scripts and style sheet, the same for
 /// every service and holding no data (the page itself, `/`, and the API need the token).
-pub const PUBLIC: [&str; 2] = ["/app.js", "/style.css"];
+pub const PUBLIC: [&str; 3] = ["/app.js", "/model.js", "/style.css"];
 
 pub async fn index() -> impl IntoResponse {
     (
@@ -19,6 +20,14 @@ pub async fn script() -> impl IntoResponse {
     (
         [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
         include_str!("web/app.js"),
+    )
+}
+
+/// The model view of a run's page (a canvas; `GET /api/runs/{id}/model`).
+pub async fn model_script() -> impl IntoResponse {
+    (
+        [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
+        include_str!("web/model.js"),
     )
 }
 

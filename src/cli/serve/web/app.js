@@ -1,7 +1,7 @@
 // contrail serve: the web page. Plain JavaScript over the JSON API (schemas/openapi.json):
 // the runs table (#/), a run's page (#/runs/ID) and the comparison of two runs
 // (#/compare/A/B), and the form that submits a run (#/submit). Live updates come from the
-// server-sent events of /api/events.
+// server-sent events of /api/events. The model view of a run's page is model.js's.
 "use strict";
 
 const query = new URLSearchParams(location.search);
@@ -139,6 +139,8 @@ async function showRun(id) {
   const notice = submitted && submitted.id === id ? (submitted.existing
     ? "this scene with these overrides is catalogued already: here is that run (tick “solve it again” to re-run it)"
     : `submitted from this page${liveUpdates ? "; followed live" : ""}`) : "";
+  // the model view (model.js): from the recording, or the partial one of a running run
+  const showsModel = Boolean((r.files && r.files.recording) || r.status === "running");
   view.innerHTML = `
     <p><a href="#/">← all runs</a></p>
     ${notice ? `<p class="notice" id="submit-notice">${esc(notice)}</p>` : ""}
@@ -148,6 +150,7 @@ async function showRun(id) {
         submitted: new Date(r.submitted_at * 1000).toLocaleString(), attempt: r.attempt, backend: esc(r.backend || "") + (r.job ? ` job ${esc(r.job)}` : ""),
         ...(prog ? { progress: esc(prog) } : {}) })}
     </div>
+    ${showsModel ? `<div id="model-slot"></div>` : ""}
     <div class="grid">
       <div class="card"><h2>outcome</h2>
         ${dl({ status: `<span class="status ${esc(r.status)}">${esc(r.status)}</span>` + (r.failure_kind ? ` <b class="culprit" id="failure-kind">${esc(r.failure_kind)}</b>` : ""),
@@ -167,6 +170,7 @@ async function showRun(id) {
       <p class="muted">on the service's machine: <code>${esc(r.commands.local)}</code></p>
     </div>
     ${r.log ? `<div class="card"><h2>solver summary</h2><pre>${esc(r.log)}</pre></div>` : ""}`;
+  if (showsModel) ModelView.show($("#model-slot"), id, r.status, api);
   if (liveUpdates && (r.status === "running" || r.status === "queued")) {
     closeStream();
     currentStream = new EventSource(withToken(`/api/runs/${encodeURIComponent(id)}/events`));
