@@ -18,11 +18,11 @@
 //! recorded pressure of the node on the axis (`/pressure`: its force over its ring area
 //! `2π r̄ l = π h²/3`).
 //! Tolerances: on the finest of three meshes (graded, 24², 48², 96²), `a` within 2 % and
-//! `p0` within 5 % of Hertz for the measured `F`; the errors of the first two meshes are
-//! printed and must not grow beyond 10 % / 15 % (a coarse mesh has few nodes under the
-//! contact). Increments 4 and 8 on the middle mesh give the same `F` to 1e-6. The 96² mesh
-//! runs in `axisym_hertz_finest` (ignored in debug runs: `cargo test --release --test
-//! axisym_hertz -- --include-ignored`).
+//! `p0` within 5 % of Hertz for the measured `F`; the coarser two within 5 % each.
+//! Increments 4 and 8 on the middle mesh give the same `F` to 1e-6.
+//! Measured (`cargo test --test axisym_hertz -- --nocapture`, 2026): `a` −1.92 %, +0.02 %,
+//! −0.24 %; `p0` −1.33 %, −1.16 %, −0.52 % (8, 14, 27 nodes in contact); all three meshes
+//! ≈ 3 s in the test profile (optimised).
 
 mod common;
 
@@ -63,7 +63,9 @@ fn run(mesh: usize, increments: usize) -> Hertz {
         100.0 * (a / a_ref - 1.0),
         100.0 * (p0 / p0_ref - 1.0)
     );
-    assert!((n_sum - force).abs() < 1e-6 * force, "Σ N = {n_sum} vs F = {force}");
+    // F is the sphere's axial force, Σ N the normal forces' sum: they differ by the slope of
+    // the sphere at the contact (1 − cos θ ≤ a²/(2R²) ≈ 5e-4)
+    assert!((n_sum - force).abs() < 1e-3 * force, "Σ N = {n_sum} vs F = {force}");
     Hertz {
         force,
         a_err: (a / a_ref - 1.0).abs(),
@@ -72,18 +74,13 @@ fn run(mesh: usize, increments: usize) -> Hertz {
 }
 
 #[test]
-fn axisym_hertz_coarse_meshes_and_increments() {
+fn axisym_hertz_contact_radius_and_peak_pressure() {
     let coarse = run(24, 4);
     let mid = run(48, 4);
-    assert!(coarse.a_err < 0.10 && coarse.p0_err < 0.15, "24²");
-    assert!(mid.a_err < 0.10 && mid.p0_err < 0.15, "48²");
+    assert!(coarse.a_err < 0.05 && coarse.p0_err < 0.05, "24²");
+    assert!(mid.a_err < 0.05 && mid.p0_err < 0.05, "48²");
     let mid8 = run(48, 8);
     assert!((mid8.force - mid.force).abs() < 1e-6 * mid.force, "{} vs {}", mid8.force, mid.force);
-}
-
-#[test]
-#[ignore = "96² mesh, ~1 min in release: cargo test --release --test axisym_hertz -- --include-ignored"]
-fn axisym_hertz_finest() {
     let fine = run(96, 4);
     assert!(fine.a_err < 0.02, "a off by {:.2} %", 100.0 * fine.a_err);
     assert!(fine.p0_err < 0.05, "p0 off by {:.2} %", 100.0 * fine.p0_err);
