@@ -80,7 +80,12 @@ fn axisym_hertz_contact_radius_and_peak_pressure() {
     assert!(coarse.a_err < 0.05 && coarse.p0_err < 0.05, "24²");
     assert!(mid.a_err < 0.05 && mid.p0_err < 0.05, "48²");
     let mid8 = run(48, 8);
-    assert!((mid8.force - mid.force).abs() < 1e-6 * mid.force, "{} vs {}", mid8.force, mid.force);
+    assert!(
+        (mid8.force - mid.force).abs() < 1e-6 * mid.force,
+        "{} vs {}",
+        mid8.force,
+        mid.force
+    );
     let fine = run(96, 4);
     assert!(fine.a_err < 0.02, "a off by {:.2} %", 100.0 * fine.a_err);
     assert!(fine.p0_err < 0.05, "p0 off by {:.2} %", 100.0 * fine.p0_err);

@@ -100,9 +100,15 @@ fn lame_cylinder_bore_displacement_within_a_tenth_of_a_percent() {
             100.0 * (fz / axial - 1.0)
         );
         assert!(err < 1e-3, "mesh {mesh:?}: u(a) = {u} vs Lamé {want}");
-        assert!(err <= last_err * 1.01, "mesh {mesh:?}: the error grew ({err} after {last_err})");
+        assert!(
+            err <= last_err * 1.01,
+            "mesh {mesh:?}: the error grew ({err} after {last_err})"
+        );
         // the top support holds the cylinder from shortening: its reaction is +σ_z A (tension)
-        assert!((fz / axial - 1.0).abs() < 5e-3, "mesh {mesh:?}: axial reaction {fz} vs {axial}");
+        assert!(
+            (fz / axial - 1.0).abs() < 5e-3,
+            "mesh {mesh:?}: axial reaction {fz} vs {axial}"
+        );
         last_err = err;
     }
     let (u1, _) = run([16, 2], 1);

@@ -67,7 +67,10 @@ fn axisym_block() -> String {
         .replace("model = \"plane-stress\"\nthickness = 0.1", "model = \"axisymmetric\"")
         .replace("size = [1.0, 1.0]", "size = [0.5, 1.0]")
         .replace("[[-0.5, 1.0], [1.5, 1.0]]", "[[-0.5, 1.0], [1.0, 1.0]]")
-        .replace("[[fix]]\nbody = \"block\"\nnodes = \"bottom-left\"\ncomponents = [\"x\"]\n", "")
+        .replace(
+            "[[fix]]\nbody = \"block\"\nnodes = \"bottom-left\"\ncomponents = [\"x\"]\n",
+            "",
+        )
 }
 
 /// The flat's force, and the pressures of the slave nodes (with their reference radii).
@@ -93,10 +96,16 @@ fn plane_stress_contact_force_is_for_the_plate() {
     for t in [0.1, 0.2] {
         let want = 1.0e3 * 1e-4 * 1.0 * t;
         for mesh in ["[4, 4]", "[8, 8]"] {
-            let sets = [format!("body.block.thickness={t}"), format!("body.block.mesh.elements={mesh}")];
+            let sets = [
+                format!("body.block.thickness={t}"),
+                format!("body.block.mesh.elements={mesh}"),
+            ];
             let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
             let (f, _, _) = press(BLOCK, &sets);
-            println!("t = {t}, mesh {mesh}: F = {f:.9e} (E d/H W t = {want:.9e}, {:+.4} %)", 100.0 * (f / want - 1.0));
+            println!(
+                "t = {t}, mesh {mesh}: F = {f:.9e} (E d/H W t = {want:.9e}, {:+.4} %)",
+                100.0 * (f / want - 1.0)
+            );
             assert!((f / want - 1.0).abs() < 1e-3, "t = {t}, {mesh}: {f} vs {want}");
             if mesh == "[4, 4]" {
                 by_t.push(f);
@@ -115,18 +124,29 @@ fn axisymmetric_flat_press_total_force_and_uniform_pressure() {
     let want = sigma * std::f64::consts::PI * r * r;
     let mut forces = Vec::new();
     for (mesh, inc) in [("[8, 8]", 1), ("[16, 16]", 1), ("[8, 8]", 2)] {
-        let sets = [format!("body.block.mesh.elements={mesh}"), format!("stepping.increments={inc}")];
+        let sets = [
+            format!("body.block.mesh.elements={mesh}"),
+            format!("stepping.increments={inc}"),
+        ];
         let sets: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
         let (f, p, notes) = press(&text, &sets);
-        println!("mesh {mesh}, {inc} increments: F = {f:.9e} (σ π R² = {want:.9e}, {:+.4} %)", 100.0 * (f / want - 1.0));
+        println!(
+            "mesh {mesh}, {inc} increments: F = {f:.9e} (σ π R² = {want:.9e}, {:+.4} %)",
+            100.0 * (f / want - 1.0)
+        );
         for (x, p) in &p {
             println!("  r = {x:.4}: p = {p:.6e} ({:+.4} %)", 100.0 * (p / sigma - 1.0));
             assert!((p / sigma - 1.0).abs() < 1e-3, "r = {x}: p = {p} vs σ = {sigma}");
         }
         assert!(p.iter().any(|(x, _)| *x == 0.0), "the node on the axis is a slave");
         assert!((f / want - 1.0).abs() < 1e-3, "{mesh}: {f} vs {want}");
-        assert!(notes.iter().any(|n| n.contains("u_r = 0 held at its 9 nodes on the axis")
-            || n.contains("u_r = 0 held at its 17 nodes on the axis")), "{notes:?}");
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.contains("u_r = 0 held at its 9 nodes on the axis")
+                    || n.contains("u_r = 0 held at its 17 nodes on the axis")),
+            "{notes:?}"
+        );
         forces.push(f);
     }
     assert!((forces[0] - forces[2]).abs() < 1e-6 * forces[0]);
@@ -137,16 +157,25 @@ fn bad_models_are_refused_with_the_fix() {
     let axi = axisym_block();
     let err = common::scene_text_err(&axi.replace("origin = [0.0, 0.0]", "origin = [-0.1, 0.0]"));
     println!("{err}");
-    assert!(err.contains("test.toml") && err.contains("body `block`") && err.contains("x = r ≥ 0"), "{err}");
+    assert!(
+        err.contains("test.toml") && err.contains("body `block`") && err.contains("x = r ≥ 0"),
+        "{err}"
+    );
     assert!(err.contains("hint: move the mesh"), "{err}");
     let err = common::scene_text_err(&BLOCK.replace("thickness = 0.1\n", ""));
     println!("{err}");
-    assert!(err.contains("needs the key `thickness`") && err.contains("hint: add the plate's thickness"), "{err}");
+    assert!(
+        err.contains("needs the key `thickness`") && err.contains("hint: add the plate's thickness"),
+        "{err}"
+    );
     let err = common::scene_text_err(&BLOCK.replace("thickness = 0.1", "thickness = -1.0"));
     assert!(err.contains("must be positive"), "{err}");
     let err = common::scene_text_err(&BLOCK.replace("model = \"plane-stress\"\n", ""));
     println!("{err}");
-    assert!(err.contains("`thickness` is given") && err.contains("plane-strain"), "{err}");
+    assert!(
+        err.contains("`thickness` is given") && err.contains("plane-strain"),
+        "{err}"
+    );
     let two = format!(
         "{axi}\n[[body]]\nname = \"other\"\nmaterial = {{ model = \"neo-hookean\", young = 1.0, poisson = 0.3 }}\nmesh = {{ kind = \"rectangle\", origin = [2.0, 0.0], size = [1.0, 1.0], elements = [1, 1] }}\n"
     );

@@ -146,7 +146,10 @@ fn plane_stress_ring_under_internal_pressure_matches_lame() {
         let el = format!("body.ring.mesh.elements={mesh}");
         let u = monitors(RING, &[&el])[0].0;
         let err = (u / want - 1.0).abs();
-        println!("mesh {mesh}: u(a) = {u:.9e} (Lamé {want:.9e}, {:+.4} %)", 100.0 * (u / want - 1.0));
+        println!(
+            "mesh {mesh}: u(a) = {u:.9e} (Lamé {want:.9e}, {:+.4} %)",
+            100.0 * (u / want - 1.0)
+        );
         assert!(err < 1e-3, "mesh {mesh}: {u} vs {want}");
         assert!(err <= last_err * 1.01, "mesh {mesh}: the error grew");
         last_err = err;

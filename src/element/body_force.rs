@@ -5,8 +5,8 @@
 //! thickness in plane strain). A dead load in the total Lagrangian description does not
 //! depend on the deformation, so these are constant nodal forces.
 
-use super::quad::{dn_dxi, jacobian, GAUSS, XI_NODES};
 use super::quad::Kinematics;
+use super::quad::{dn_dxi, jacobian, GAUSS, XI_NODES};
 
 /// Nodal forces `[f1x, f1y, f2x, …]` of the body force `b` on the quad with reference nodes
 /// `x` (counter-clockwise), with the element kernel's shape functions and Gauss points.

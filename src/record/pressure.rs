@@ -153,7 +153,11 @@ pub fn profiles(
                     contact_point: c.contact_point,
                     normal_force: n,
                     tributary: l,
-                    pressure: if l > 0.0 { n / (pair.weight(c.slave) * l) } else { f64::NAN },
+                    pressure: if l > 0.0 {
+                        n / (pair.weight(c.slave) * l)
+                    } else {
+                        f64::NAN
+                    },
                 })
             })
             .collect();

@@ -139,7 +139,10 @@ pub(super) fn fix_axis(cx: &Ctx, m: &mut Model, end: f64) -> Result<(), SceneErr
             let refuse = |what: &str| {
                 cx.err(
                     &m.bodies[bi].name,
-                    format!("body `{}`: node {n} is on the axis (r = 0) but {what}", m.bodies[bi].name),
+                    format!(
+                        "body `{}`: node {n} is on the axis (r = 0) but {what}",
+                        m.bodies[bi].name
+                    ),
                     "a node on the axis of an axisymmetric body has u_r = 0, held automatically: remove its x fix",
                 )
             };
@@ -247,7 +250,9 @@ pub(super) fn contact_weights(cx: &Ctx, m: &mut Model) -> Result<(), SceneError>
                 ));
             }
         }
-        let Some(body) = slave_body.or(master_body) else { continue };
+        let Some(body) = slave_body.or(master_body) else {
+            continue;
+        };
         let weights = match m.bodies[body].kinematics {
             Kinematics::PlaneStrain => continue,
             Kinematics::PlaneStress { thickness } => vec![thickness; pair.slaves.len()],
