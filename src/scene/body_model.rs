@@ -88,7 +88,7 @@ fn size(nodes: &[[f64; 2]]) -> f64 {
 /// within it are put on the axis, `x = 0`, so that no element sees a negative radius).
 pub(super) fn check_radii(cx: &Ctx, name: &str, nodes: &mut [[f64; 2]]) -> Result<(), SceneError> {
     let tol = AXIS_TOLERANCE * size(nodes);
-    if let Some((n, p)) = nodes.iter().enumerate().find(|(_, p)| !(p[0] >= -tol)) {
+    if let Some((n, p)) = nodes.iter().enumerate().find(|(_, p)| p[0] < -tol || p[0].is_nan()) {
         return Err(cx.err(
             name,
             format!(

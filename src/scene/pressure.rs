@@ -69,8 +69,8 @@ pub(super) fn add_pressures(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) ->
         for &[a, b] in segments {
             let f = segment_forces(m.nodes[a], m.nodes[b], body.kinematics);
             for (n, fi) in [a, b].into_iter().zip(f) {
-                for c in 0..2 {
-                    *total.entry(2 * n + c).or_default() += fi[c];
+                for (c, v) in fi.into_iter().enumerate() {
+                    *total.entry(2 * n + c).or_default() += v;
                 }
             }
         }
