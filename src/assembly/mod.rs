@@ -7,7 +7,7 @@ pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
-use crate::element::quad::{quad_residual_tangent_with, ElementError, QuadGeometry};
+use crate::element::quad::{quad_residual_tangent_with, ElementError, Kinematics, QuadGeometry};
 use crate::linalg::chooser::LinearSolve;
 use crate::linalg::factorization::LinearError;
 use crate::linalg::sparse::SparseMatrix;
@@ -96,19 +96,28 @@ impl DofMap {
     }
 }
 
-/// `100 ε_mach √Σ_e (E_e h_e)²`, `E_e` Young's modulus, `h_e` the longest edge.
+/// `100 ε_mach √Σ_e (E_e h_e w_e)²`, `E_e` Young's modulus, `h_e` the longest edge, `w_e`
+/// the measure of the element's forces beyond plane strain: 1 in plane strain, the thickness
+/// in plane stress, `2π R_e` (`R_e` the largest nodal radius) in the axisymmetric setting.
 fn material_floor(model: &Model) -> f64 {
     let mut sum = 0.0;
     for el in &model.elements {
-        let (Material::SaintVenantKirchhoff { lambda, mu } | Material::NeoHookean { lambda, mu }) =
-            model.bodies[el.body].material;
+        let body = &model.bodies[el.body];
+        let (Material::SaintVenantKirchhoff { lambda, mu } | Material::NeoHookean { lambda, mu }) = body.material;
         let young = mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
         let mut h = 0.0f64;
         for i in 0..4 {
             let (a, b) = (model.nodes[el.nodes[i]], model.nodes[el.nodes[(i + 1) % 4]]);
             h = h.max((a[0] - b[0]).hypot(a[1] - b[1]));
         }
-        sum += (young * h).powi(2);
+        let w = match body.kinematics {
+            Kinematics::PlaneStrain => 1.0,
+            Kinematics::PlaneStress { thickness } => thickness,
+            Kinematics::Axisymmetric => {
+                2.0 * std::f64::consts::PI * el.nodes.iter().map(|&n| model.nodes[n][0]).fold(0.0, f64::max)
+            }
+        };
+        sum += (young * h * w).powi(2);
     }
     100.0 * f64::EPSILON * sum.sqrt()
 }
@@ -267,7 +276,8 @@ impl Assembler {
                 .iter()
                 .map(|el| {
                     let body = &model.bodies[el.body];
-                    QuadGeometry::for_material(body.kind, &body.material, &el.nodes.map(|n| model.nodes[n]))
+                    let x = el.nodes.map(|n| model.nodes[n]);
+                    QuadGeometry::with_kinematics(body.kind, &body.material, body.kinematics, &x)
                 })
                 .collect(),
             team: None,

@@ -34,6 +34,9 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         problem.settings.stepping.increments,
         problem.settings.stepping.end
     )?;
+    for b in &m.bodies {
+        outln!("  body {}: {}", b.name, b.kinematics.label())?;
+    }
     for note in &m.notes {
         outln!("  note: {note}")?;
     }

@@ -26,6 +26,9 @@ pub struct Tracker {
     /// The last crossing: increment, point, from and to segment.
     pub last_crossing: Option<(usize, String, usize, usize)>,
     slaves: Vec<Vec<String>>,
+    /// Each body's model and the measure of its forces (`block: axisymmetric (forces are
+    /// totals over the full circle)`), for the summary's `model` line.
+    pub models: Vec<String>,
 }
 
 impl Tracker {
@@ -38,6 +41,9 @@ impl Tracker {
 impl Observer for Tracker {
     fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
         self.end = info.settings.stepping.end;
+        self.models = (model.bodies.iter())
+            .map(|b| format!("{}: {}", b.name, b.kinematics.label()))
+            .collect();
         self.slaves = model
             .contacts
             .iter()
@@ -118,6 +124,9 @@ pub fn progress_lines(o: &mut String, t: &Tracker) {
             count(t.increments, "increment", "increments")
         ),
     );
+    if !t.models.is_empty() {
+        row(o, "model", t.models.join("; "));
+    }
     let monitors = t.last.as_ref().map_or(Vec::new(), |l| l.all_monitors());
     if !monitors.is_empty() {
         let points: Vec<String> = (monitors.iter())

@@ -102,10 +102,11 @@ impl PointSnapshot {
             r.trial_traction = e.t1_trial / sq;
             r.traction = e.t1 / sq;
             r.state = e.state;
-            r.xi_anchor = if e.state == ContactState::Open || pair.law.eps_t == 0.0 {
+            let eps_t = pair.law_of(slave_index).eps_t;
+            r.xi_anchor = if e.state == ContactState::Open || eps_t == 0.0 {
                 f64::NAN
             } else {
-                e.proj.xi + e.t1 / (pair.law.eps_t * e.proj.a11)
+                e.proj.xi + e.t1 / (eps_t * e.proj.a11)
             };
             r.crossing = e.state != ContactState::Open && hist.closed && hist.segment != now.segment;
             r.contact_point = e.proj.rho;
@@ -161,7 +162,6 @@ pub(super) fn crossing_event(
     multiplier: Option<Multiplier>,
 ) -> CrossingEvent {
     let pair = &cfg.model.contacts[ip];
-    let slave = pair.slaves[is];
     let ga = cfg.segment(pair, a);
     let (rho_a, rho1_a) = ga.eval(old.xi);
     let rho1_b = e.proj.rho1;
@@ -172,7 +172,7 @@ pub(super) fn crossing_event(
         direction: 0,
         between: 0.0,
     };
-    let (mut ext, _) = local_problem(cfg, pair, slave, a, Some((stored(old), a, same, None)));
+    let (mut ext, _) = local_problem(cfg, pair, is, a, Some((stored(old), a, same, None)));
     ext.multiplier = multiplier;
     let ext = ext.evaluate_f64();
     CrossingEvent {

@@ -38,6 +38,7 @@ fn outline_model(p: [[f64; 2]; 3], slaves: &[[f64; 2]]) -> Model {
         transfer: TransferKind::Continuous,
         search_radius: 1.0,
         owned_vertices: Vec::new(),
+        weights: Vec::new(),
         smoothing: crate::model::Smoothing::None,
         enforcement: crate::model::Enforcement::Penalty,
     });

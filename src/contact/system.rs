@@ -116,7 +116,8 @@ pub(super) fn stored(h: &PointHistory) -> StoredTraction {
     }
 }
 
-/// The local problem of one slave point on segment `b`, with the history `(stored, A, path)`
+/// The local problem of slave point `is` of the pair on segment `b` (its law:
+/// [`ContactPair::law_of`], the pair's penalties times the point's weight), with the history `(stored, A, path)`
 /// of a point that was closed at the last converged increment; returns it with the global
 /// nodes of its slots.
 ///
@@ -127,10 +128,11 @@ pub(super) fn stored(h: &PointHistory) -> StoredTraction {
 pub(super) fn local_problem(
     cfg: &Config,
     pair: &ContactPair,
-    slave: Slave,
+    is: usize,
     b: usize,
     closed: Option<(StoredTraction, usize, Path, Option<f64>)>,
 ) -> (PointProblem, Slots) {
+    let slave = pair.slaves[is];
     let mut slots = Slots {
         ids: [0; MAX_NODES],
         len: 0,
@@ -160,7 +162,7 @@ pub(super) fn local_problem(
         x[i] = cfg.node_about(n, origin);
     }
     let problem = PointProblem {
-        law: pair.law,
+        law: pair.law_of(is),
         scheme: pair.transfer,
         x,
         n_nodes: slots.len,
@@ -311,7 +313,7 @@ impl ContactSystem {
                     (_, e) => e.is_some_and(|e| e.state != ContactState::Open),
                 };
                 // an augmented point is closed while `λ_N − ε_N ζ > 0`: the rules see that gap
-                let shift = self.multipliers[ip][is].normal / pair.law.eps_n;
+                let shift = self.multipliers[ip][is].normal / pair.law_of(is).eps_n;
                 let mut paired = pairing::locate(cfg, pair, slave, start, closed_before, grid, shift);
                 if let (true, Some(before), Some(after)) = (closed_before, now.segment, paired.segment) {
                     if after != before {
@@ -386,7 +388,7 @@ impl ContactSystem {
                     }
                     _ => None,
                 };
-                let (mut problem, slots) = local_problem(cfg, pair, slave, loc.segment, closed);
+                let (mut problem, slots) = local_problem(cfg, pair, is, loc.segment, closed);
                 problem.rule = match self.penalty_rule {
                     true => Rule::Penalty,
                     false => Rule::AlartCurnier { forces, rho_n, rho_t },

@@ -48,6 +48,30 @@ pub enum Kinematics {
     Axisymmetric,
 }
 
+impl Kinematics {
+    /// The setting as a scene writes it, with the measure of its forces: `plane-strain
+    /// (per unit thickness)`, `plane-stress, thickness 0.01 (forces for the plate)`,
+    /// `axisymmetric (forces are totals over the full circle)`.
+    pub fn label(self) -> String {
+        match self {
+            Kinematics::PlaneStrain => "plane-strain (forces per unit thickness)".into(),
+            Kinematics::PlaneStress { thickness } => {
+                format!("plane-stress, thickness {thickness} (forces for the plate)")
+            }
+            Kinematics::Axisymmetric => "axisymmetric (forces are totals over the full circle)".into(),
+        }
+    }
+
+    /// `plane-strain`, `plane-stress` or `axisymmetric`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kinematics::PlaneStrain => "plane-strain",
+            Kinematics::PlaneStress { .. } => "plane-stress",
+            Kinematics::Axisymmetric => "axisymmetric",
+        }
+    }
+}
+
 /// What the kernel needs of the setting beyond the plane-strain geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum ModelGeometry {

@@ -83,9 +83,33 @@ pub struct ContactPair {
     pub smoothing: Smoothing,
     /// Penalty, or augmented Lagrangian (Uzawa updates at converged increments).
     pub enforcement: Enforcement,
+    /// Per slave: the weight `w` of its contact forces, the measure of the point in the
+    /// body's model (`t` in plane stress, `2π r̄` in the axisymmetric setting: see
+    /// `scene::body_model::contact_weights`); the point's law is `law` with `ε_N`, `ε_T`
+    /// times `w` ([`ContactPair::law_of`]). Empty: 1 for every slave (plane strain).
+    pub weights: Vec<f64>,
 }
 
 impl ContactPair {
+    /// The weight of slave `is`'s contact forces (1 where [`ContactPair::weights`] is empty).
+    pub fn weight(&self, is: usize) -> f64 {
+        self.weights.get(is).copied().unwrap_or(1.0)
+    }
+
+    /// The law of slave `is`: the penalties times its weight (its forces are those of a
+    /// plane-strain point times `w`; the friction coefficient is the pair's). The pair's own
+    /// law where the weights are all 1 (bit for bit).
+    pub fn law_of(&self, is: usize) -> ContactLaw {
+        match self.weights.get(is) {
+            None => self.law,
+            Some(w) => ContactLaw {
+                eps_n: self.law.eps_n * w,
+                eps_t: self.law.eps_t * w,
+                mu: self.law.mu,
+            },
+        }
+    }
+
     /// The interpolation of this pair's own master: its smoothing for a deformable face,
     /// [`Smoothing::None`] for a rigid outline (its kinks are real vertices).
     pub fn face_smoothing(&self) -> Smoothing {

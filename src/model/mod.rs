@@ -8,7 +8,7 @@ pub mod ramp;
 pub mod rigid;
 
 use crate::element::material::Material;
-use crate::element::quad::ElementKind;
+use crate::element::quad::{ElementKind, Kinematics};
 pub use contact::{
     ContactLaw, ContactPair, Enforcement, Master, OwnedVertex, Slave, Smoothing, TransferKind, SECOND_PASS_SUFFIX,
 };
@@ -29,6 +29,10 @@ pub struct Body {
     pub name: String,
     pub material: Material,
     pub kind: ElementKind,
+    /// Plane strain, plane stress (with its thickness) or axisymmetric: the measure of every
+    /// force on the body (per unit thickness, for the plate, or the total over the full
+    /// circle; see [`crate::element::quad::Kinematics`]).
+    pub kinematics: Kinematics,
     pub first_node: usize,
     pub node_count: usize,
     /// Named node sets (global node ids).

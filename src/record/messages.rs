@@ -19,6 +19,19 @@ pub struct BodyInfo {
     pub node_count: usize,
     /// Named boundary faces as node pairs `[a, b]`, counter-clockwise around the body.
     pub faces: Vec<FaceInfo>,
+    /// `plane-strain` (forces per unit thickness), `plane-stress` (forces for a plate of
+    /// `thickness`) or `axisymmetric` (about `x = 0`; every force of the recording on this
+    /// body — reactions, loads, contact forces, monitors — is the total over the full
+    /// circle). Absent in older recordings: read as `plane-strain`.
+    #[serde(default = "plane_strain")]
+    pub model: String,
+    /// The plate's thickness of a `plane-stress` body (absent otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thickness: Option<f64>,
+}
+
+fn plane_strain() -> String {
+    "plane-strain".into()
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -107,6 +120,11 @@ impl ModelRecord {
                         segments: segments.clone(),
                     })
                     .collect(),
+                model: b.kinematics.name().into(),
+                thickness: match b.kinematics {
+                    crate::element::quad::Kinematics::PlaneStress { thickness } => Some(thickness),
+                    _ => None,
+                },
             })
             .collect();
         let rigid = model

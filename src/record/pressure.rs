@@ -5,7 +5,11 @@
 //! Node-to-segment contact gives a normal *force* `N` per slave node; the pressure is
 //! `p = N / l`, `l` the node's tributary length: half the current length of each slave face
 //! segment that joins it to another slave node of the pair (a node at the end of the slave
-//! chain — a free end or a symmetry plane — has one such segment). The arc length `s` runs
+//! chain — a free end or a symmetry plane — has one such segment). Beyond plane strain the
+//! force is divided by the measure of the point too, its contact weight `w`
+//! ([`crate::model::ContactPair::weights`]): `p = N / (w l)`, with `w = t` for a plate and
+//! `w = 2π r̄` for a ring of an axisymmetric body (`N` there the total over the full circle,
+//! `2π r̄ l` the ring's tributary area). The arc length `s` runs
 //! along the master's segments in index order (current lengths; a rigid surface's pieces in
 //! the order they are listed), `s = s_k + L_k (ξ + 1)/2` on segment `k` (linear in ξ on
 //! straight segments and on arcs). Open points have `p = 0`; points with no master segment
@@ -46,8 +50,9 @@ pub struct PressurePoint {
     /// Contact point `ρ(ξ)` (current configuration).
     #[serde(with = "Real2")]
     pub contact_point: [f64; 2],
-    /// Normal force `N` of the node, its tributary length `l`, and `p = N / l` (NaN when the
-    /// node is on no face segment joining it to another slave node: `l = 0`).
+    /// Normal force `N` of the node, its tributary length `l`, and `p = N / (w l)` (`w` = 1 in
+    /// plane strain, the thickness in plane stress, `2π r̄` axisymmetric; NaN when the node is
+    /// on no face segment joining it to another slave node: `l = 0`).
     #[serde(with = "Real")]
     pub normal_force: f64,
     #[serde(with = "Real")]
@@ -148,7 +153,11 @@ pub fn profiles(
                     contact_point: c.contact_point,
                     normal_force: n,
                     tributary: l,
-                    pressure: if l > 0.0 { n / l } else { f64::NAN },
+                    pressure: if l > 0.0 {
+                        n / (pair.weight(c.slave) * l)
+                    } else {
+                        f64::NAN
+                    },
                 })
             })
             .collect();

@@ -31,7 +31,7 @@ impl Ctx<'_> {
     }
 }
 
-fn ramp(spec: &RampSpec, end: f64) -> Ramp {
+pub(super) fn ramp(spec: &RampSpec, end: f64) -> Ramp {
     match spec {
         RampSpec::Final(v) => Ramp::linear(*v, end),
         RampSpec::Path(k) => Ramp {
@@ -129,7 +129,8 @@ fn body_load(cx: &Ctx, m: &mut Model, bl: &BodyLoadSpec, end: f64) -> Result<(),
     let mut f = [0.0; 8];
     for e in m.elements.iter().filter(|e| e.body == bi) {
         let x = e.nodes.map(|n| m.nodes[n]);
-        crate::element::body_force::quad_body_force(&x, bl.force, &mut f);
+        let kinematics = m.bodies[bi].kinematics;
+        crate::element::body_force::quad_body_force_with(&x, bl.force, kinematics, &mut f);
         for (i, &n) in e.nodes.iter().enumerate() {
             for c in 0..2 {
                 *total.entry(2 * n + c).or_default() += f[2 * i + c];
@@ -270,11 +271,15 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         monitors: Vec::new(),
         notes: Vec::new(),
     };
+    super::body_model::check_mixed(&cx, s)?;
     steps::add_bodies(&mut cx, s, &mut m)?;
     steps::add_fixes(&cx, s, &mut m, end)?;
+    super::body_model::fix_axis(&cx, &mut m, end)?;
     steps::add_loads(&cx, s, &mut m, end)?;
+    super::pressure::add_pressures(&cx, s, &mut m, end)?;
     steps::add_rigid(&cx, s, &mut m, end)?;
     steps::add_contacts(&cx, s, &mut m)?;
+    super::body_model::contact_weights(&cx, &mut m)?;
     super::overclosure::adjust_overclosures(&mut m, s);
     super::initial_contact::refuse_initial_overlaps(&cx, &m, s)?;
     steps::add_monitors(&cx, s, &mut m)?;
@@ -408,6 +413,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         transfer: c.transfer,
         search_radius: c.search_radius.unwrap_or(2.0 * h),
         owned_vertices: Vec::new(),
+        weights: Vec::new(),
         smoothing,
         enforcement: enforcement(cx, c)?,
     })

@@ -75,6 +75,7 @@ pub fn second_pass(m: &Model, pair: &mut ContactPair, slave_body: usize) -> Opti
         transfer: pair.transfer,
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
+        weights: Vec::new(),
         smoothing: pair.smoothing,
         enforcement: pair.enforcement,
     })
@@ -131,6 +132,7 @@ pub fn vertex_pair(m: &Model, pair: &ContactPair, slave_body: usize, taken: &[(u
         transfer: pair.transfer,
         search_radius: pair.search_radius,
         owned_vertices: Vec::new(),
+        weights: Vec::new(),
         // a rigid master's pair keeps the smoothing of the face its vertices press on
         smoothing: pair.smoothing,
         enforcement: pair.enforcement,

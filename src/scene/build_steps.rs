@@ -3,6 +3,7 @@
 //! entry and the fix).
 
 use super::*;
+use crate::element::quad::Kinematics;
 
 /// The deformable bodies: material, mesh (nodes, elements, node sets and faces, numbered
 /// after the bodies before); records each body's mesh file in `cx` for later messages.
@@ -29,7 +30,11 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
             MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
             MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
         };
-        let mesh = body_mesh(cx.src, b)?;
+        let kinematics = crate::scene::body_model::kinematics(cx, b)?;
+        let mut mesh = body_mesh(cx.src, b)?;
+        if kinematics == Kinematics::Axisymmetric {
+            crate::scene::body_model::check_radii(cx, &b.name, &mut mesh.nodes)?;
+        }
         let dofs = 2 * (m.nodes.len() + mesh.nodes.len());
         if dofs > s.limits.max_dofs {
             return Err(cx.err(
@@ -53,6 +58,7 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
             name: b.name.clone(),
             material,
             kind: b.element,
+            kinematics,
             first_node: off,
             node_count: mesh.nodes.len(),
             node_sets: mesh

@@ -24,6 +24,10 @@ pub const BUILTINS: &[Builtin] = &[
         text: include_str!("../../scenes/hertz.toml"),
     },
     Builtin {
+        name: "hertz-axisym",
+        text: include_str!("../../scenes/hertz-axisym.toml"),
+    },
+    Builtin {
         name: "crossing",
         text: include_str!("../../scenes/crossing.toml"),
     },

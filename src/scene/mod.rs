@@ -3,6 +3,7 @@
 //! Errors name the file, the line and column, and how to fix it; `--set key.path=value`
 //! overrides are applied to the parsed TOML before it is checked.
 
+mod body_model;
 mod build;
 pub mod build_pairs;
 pub mod builtin;
@@ -13,6 +14,7 @@ pub mod mesh_spec;
 pub mod monitors;
 mod overclosure;
 mod overrides;
+pub mod pressure;
 pub mod types;
 pub mod validate;
 

@@ -27,6 +27,9 @@ pub struct SceneFile {
     /// Dead body loads (gravity) per deformable body.
     #[serde(default, rename = "body_load")]
     pub body_loads: Vec<BodyLoadSpec>,
+    /// Dead pressures on faces of deformable bodies.
+    #[serde(default, rename = "pressure")]
+    pub pressures: Vec<super::pressure::PressureSpec>,
     #[serde(default, rename = "rigid")]
     pub rigid: Vec<RigidSpec>,
     #[serde(default, rename = "contact")]
@@ -74,7 +77,17 @@ pub struct BodySpec {
     pub material: MaterialSpec,
     #[serde(default = "default_element")]
     pub element: ElementKind,
+    /// How the 2D mesh stands for the 3D body: `"plane-strain"` (the default; forces per unit
+    /// thickness), `"plane-stress"` (a plate of `thickness`; forces for the plate) or
+    /// `"axisymmetric"` (a body of revolution about the axis `x = 0`: `x = r ≥ 0`, `y = z`;
+    /// every force — loads, reactions, contact, monitors — is the total over the full circle).
+    #[serde(default)]
+    pub model: BodyModel,
+    /// Thickness of a `plane-stress` body (> 0; only with `model = "plane-stress"`).
+    pub thickness: Option<f64>,
 }
+
+pub use super::body_model::BodyModel;
 
 fn default_element() -> ElementKind {
     ElementKind::Q4EasSafe
@@ -195,12 +208,16 @@ pub struct LoadSpec {
     pub body: String,
     pub nodes: NodeSelection,
     pub component: Component,
-    /// Total force (split equally over the nodes) as a history.
+    /// Total force (split equally over the nodes) as a history: per unit thickness in plane
+    /// strain, for the plate in plane stress, the total over the full circle (of all the
+    /// nodes' rings together) on an axisymmetric body.
     pub total: RampSpec,
 }
 
 /// A dead body load on a deformable body, e.g. gravity: `force = ρ₀ g` per unit reference
-/// volume (unit thickness), scaled by `factor` (default: linear from 0 to 1 over the run).
+/// volume, scaled by `factor` (default: linear from 0 to 1 over the run); the nodal forces are
+/// `∫ N b dV` in the body's model (unit thickness, the plate's thickness, or the ring
+/// `dV = 2π r dA`).
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodyLoadSpec {

@@ -16,6 +16,11 @@
 //! assembled: the check fails when a record or the assembly lost or misplaced a force, or
 //! when the free residual, small in norm, is not small in its sum.
 //!
+//! An axisymmetric body's resultant is its axial component alone (`x = r` set to zero): a
+//! radial translation is no rigid motion of a body of revolution (it strains the hoops), so
+//! its internal forces do not sum to zero along `r` — the radial forces of the rings are
+//! balanced by the hoop stresses, not by each other.
+//!
 //! The imbalance is `max_b |F_b| / F`, `F` the force scale of the convergence test
 //! ([`super::newton::force_scale`]) but at least [`NOISE_TO_SCALE`] times the residual's
 //! round-off floor (`Assembler::roundoff`: in a model still without load every force is
@@ -79,6 +84,11 @@ pub fn body_resultants(model: &Model, asm: &Assembler, t: f64, points: &[PointSn
                 add(a, 0, -f[0]);
                 add(a, 1, -f[1]);
             }
+        }
+    }
+    for (b, body) in model.bodies.iter().enumerate() {
+        if body.kinematics == crate::element::quad::Kinematics::Axisymmetric {
+            total[b][0] = 0.0;
         }
     }
     total
