@@ -27,6 +27,7 @@ cases=(
   "120×4, μ = 0.2, adaptive (default), no recording|strip-channel --set body.strip.mesh.elements=[120,4]"
   "120×4, μ = 0.2, adaptive (default), MCAP|strip-channel --set body.strip.mesh.elements=[120,4] --out REC.mcap"
   "120×4, no recording, one thread (--threads 1)|strip-channel --set body.strip.mesh.elements=[120,4] --threads 1"
+  "120×4, μ = 0.2, Δv = 0.0025 fixed (the seed's settings), one thread|strip-channel --set body.strip.mesh.elements=[120,4] ${SEED[*]} --threads 1"
 )
 echo "| case | outcome | wall (best of $REPEAT) | CPU | increments | Newton its | assemblies (with tangent) | µs / iteration | elements | contact | LU | solve | recording |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -49,7 +50,7 @@ for c in "${cases[@]}"; do
   incs=$(sed -n 's/^reached .* in \([0-9]*\) increments.*/\1/p' "$TMP/best")
   its=$(sed -n 's/^newton *\([0-9]*\) iterations.*/\1/p' "$TMP/best")
   split=$(sed -n 's/^time spent *//p' "$TMP/best")
-  asm=$(echo "$split" | sed -n 's/.*, \([0-9]*\) assemblies (\([0-9]*\) with the tangent).*/\1 (\2)/p')
+  asm=$(echo "$split" | sed -n 's/.*, \([0-9]*\) assemblies (\([0-9]*\) with the tangent.*/\1 (\2)/p')
   part() { echo "$split" | sed -n "s/.*$1 \([0-9.]*\) s.*/\1/p"; }
   per=$(awk "BEGIN{ if (\"$its\" > 0) printf \"%.0f\", 1e6 * $best / $its; else print \"–\" }")
   echo "| $label | $outcome | $best s | $cpu s | $incs | $its | $asm | $per | $(part elements) s | $(part contact) s | $(part LU) s | $(part solve) s | $(part recording) s |"

@@ -4,7 +4,7 @@
 //! (increment 12). The `.pvd` is written when the run ends — also after a failure or an
 //! interruption — under a temporary name and renamed into place.
 
-use crate::element::fields::{centre_fields, CentreFields};
+use crate::element::fields::{centre_fields_with, CentreFields};
 use crate::model::Model;
 use crate::record::atomic_file::AtomicFile;
 use crate::record::vtu::file::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
@@ -22,7 +22,7 @@ pub fn model_fields(model: &Model, u: &[f64]) -> Vec<Option<CentreFields>> {
             let body = &model.bodies[e.body];
             let x = e.nodes.map(|n| model.nodes[n]);
             let ue = e.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
-            centre_fields(body.kind, &body.material, &x, &ue).ok()
+            centre_fields_with(body.kind, &body.material, body.kinematics, &x, &ue).ok()
         })
         .collect()
 }
