@@ -96,6 +96,10 @@ pub struct NewtonSettings {
     /// not depend on it. `contrail run --threads` sets it; `contrail sweep --jobs` and
     /// `contrail serve --workers` divide the machine among their runs.
     pub threads: usize,
+    /// Assemble an iterate expected to converge without the tangent (a wrong guess assembles
+    /// it again with it; `solver::newton`, `expects_convergence`). The iterations and the
+    /// answer do not depend on it; `false` for comparisons.
+    pub skip_converging_tangents: bool,
 }
 
 /// Which linear solver factorises the tangent (`crate::linalg`). They give the same
@@ -144,6 +148,7 @@ impl Default for NewtonSettings {
             check_tangent: TangentCheckWhen::OnFailure,
             linear_solver: LinearSolver::Auto,
             threads: 0,
+            skip_converging_tangents: true,
         }
     }
 }

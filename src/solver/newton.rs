@@ -241,7 +241,7 @@ impl<'a> Iterate<'a> {
         state.contact.set_warm_start(true);
         // an increment like the last one, which its start already satisfied, is expected to
         // be accepted at its start too: no tangent unless it must iterate
-        let skip = target.attempt == 0 && ws.last_start_accepted;
+        let skip = settings.skip_converging_tangents && target.attempt == 0 && ws.last_start_accepted;
         assemble_at(model, asm, state, target.t, !skip)?;
         state.contact.set_warm_start(false);
         let missing_tangent = skip.then_some((true, state.contact.kink()));
@@ -368,6 +368,9 @@ impl<'a> Iterate<'a> {
     /// will judge it. The answer is the same either way: a wrong guess costs one assembly
     /// without the tangent before the tangent is assembled.
     pub(super) fn expects_convergence(&self) -> bool {
+        if !self.settings.skip_converging_tangents {
+            return false;
+        }
         let r = &self.ws.residuals;
         let rate = match r[..] {
             [] => return false,
