@@ -384,29 +384,7 @@ fn gauss_pass(
         };
         let b = &kq.b;
         if eas {
-            let g = &gq.g;
-            // D G (3×4)
-            let mut dg = [[0.0; 4]; 3];
-            for (a, row) in dg.iter_mut().enumerate() {
-                for (m, v) in row.iter_mut().enumerate() {
-                    *v = d[(a, 0)] * g[0][m] + d[(a, 1)] * g[1][m] + d[(a, 2)] * g[2][m];
-                }
-            }
-            for m in 0..4 {
-                t.ra[m] += dv * (g[0][m] * s[0] + g[1][m] * s[1] + g[2][m] * s[2]);
-                if kaa {
-                    for n in m..4 {
-                        t.kaa[m][n] += dv * (g[0][m] * dg[0][n] + g[1][m] * dg[1][n] + g[2][m] * dg[2][n]);
-                    }
-                }
-            }
-            if full {
-                for (i, row) in t.kua.iter_mut().enumerate() {
-                    for (m, v) in row.iter_mut().enumerate() {
-                        *v += dv * (b[0][i] * dg[0][m] + b[1][i] * dg[1][m] + b[2][i] * dg[2][m]);
-                    }
-                }
-            }
+            add_enhanced_terms(&mut t, &gq.g, b, &s, &d, dv, kaa, full);
         }
         if !full {
             continue;
@@ -416,28 +394,7 @@ fn gauss_pass(
             *v += dv * (b[0][i] * s[0] + b[1][i] * s[1] + b[2][i] * s[2]);
         }
         if want_k {
-            let mut db = [[0.0; 8]; 3];
-            for (a, row) in db.iter_mut().enumerate() {
-                for (i, v) in row.iter_mut().enumerate() {
-                    *v = d[(a, 0)] * b[0][i] + d[(a, 1)] * b[1][i] + d[(a, 2)] * b[2][i];
-                }
-            }
-            for i in 0..8 {
-                for j in i..8 {
-                    t.kuu[i][j] += dv * (b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j]);
-                }
-            }
-            // geometric stiffness on the node pairs I ≤ J
-            let gr = &gq.grad;
-            for ni in 0..4 {
-                let sgx = dv * (s[0] * gr[0][ni] + s[2] * gr[1][ni]);
-                let sgy = dv * (s[2] * gr[0][ni] + s[1] * gr[1][ni]);
-                for nj in ni..4 {
-                    let v = sgx * gr[0][nj] + sgy * gr[1][nj];
-                    t.kuu[2 * ni][2 * nj] += v;
-                    t.kuu[2 * ni + 1][2 * nj + 1] += v;
-                }
-            }
+            add_displacement_stiffness(&mut t.kuu, b, &s, &d, &gq.grad, dv);
         }
     }
     if eas {
@@ -453,6 +410,79 @@ fn gauss_pass(
         }
     }
     Ok(t)
+}
+
+/// One Gauss point's share of the enhanced-strain blocks: `R_α += dv Gᵀ S`, with `kaa` the
+/// upper triangle of `K_αα += dv Gᵀ D G`, with `full` `K_uα += dv Bᵀ D G`.
+#[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
+#[inline]
+fn add_enhanced_terms(
+    t: &mut Sums,
+    g: &[[f64; 4]; 3],
+    b: &[[f64; 8]; 3],
+    s: &Vector3<f64>,
+    d: &Matrix3<f64>,
+    dv: f64,
+    kaa: bool,
+    full: bool,
+) {
+    // D G (3×4)
+    let mut dg = [[0.0; 4]; 3];
+    for (a, row) in dg.iter_mut().enumerate() {
+        for (m, v) in row.iter_mut().enumerate() {
+            *v = d[(a, 0)] * g[0][m] + d[(a, 1)] * g[1][m] + d[(a, 2)] * g[2][m];
+        }
+    }
+    for m in 0..4 {
+        t.ra[m] += dv * (g[0][m] * s[0] + g[1][m] * s[1] + g[2][m] * s[2]);
+        if kaa {
+            for n in m..4 {
+                t.kaa[m][n] += dv * (g[0][m] * dg[0][n] + g[1][m] * dg[1][n] + g[2][m] * dg[2][n]);
+            }
+        }
+    }
+    if full {
+        for (i, row) in t.kua.iter_mut().enumerate() {
+            for (m, v) in row.iter_mut().enumerate() {
+                *v += dv * (b[0][i] * dg[0][m] + b[1][i] * dg[1][m] + b[2][i] * dg[2][m]);
+            }
+        }
+    }
+}
+
+/// One Gauss point's share of the upper triangle of `K_uu`: the material part `dv Bᵀ D B`
+/// and the geometric part `dv δ_ab ∇N_I · S ∇N_J` (`gr` = the shape gradients `∇N`).
+#[allow(clippy::needless_range_loop)]
+#[inline]
+fn add_displacement_stiffness(
+    kuu: &mut [[f64; 8]; 8],
+    b: &[[f64; 8]; 3],
+    s: &Vector3<f64>,
+    d: &Matrix3<f64>,
+    gr: &[[f64; 4]; 2],
+    dv: f64,
+) {
+    let mut db = [[0.0; 8]; 3];
+    for (a, row) in db.iter_mut().enumerate() {
+        for (i, v) in row.iter_mut().enumerate() {
+            *v = d[(a, 0)] * b[0][i] + d[(a, 1)] * b[1][i] + d[(a, 2)] * b[2][i];
+        }
+    }
+    for i in 0..8 {
+        for j in i..8 {
+            kuu[i][j] += dv * (b[0][i] * db[0][j] + b[1][i] * db[1][j] + b[2][i] * db[2][j]);
+        }
+    }
+    // geometric stiffness on the node pairs I ≤ J
+    for ni in 0..4 {
+        let sgx = dv * (s[0] * gr[0][ni] + s[2] * gr[1][ni]);
+        let sgy = dv * (s[2] * gr[0][ni] + s[1] * gr[1][ni]);
+        for nj in ni..4 {
+            let v = sgx * gr[0][nj] + sgy * gr[1][nj];
+            kuu[2 * ni][2 * nj] += v;
+            kuu[2 * ni + 1][2 * nj + 1] += v;
+        }
+    }
 }
 
 /// Largest change of an enhanced strain component, `max_q ‖G_q δα‖∞`, that the step `δα`
@@ -562,13 +592,45 @@ pub fn quad_residual_tangent_with(
         None => [0.0; 4],
     };
     let want_k = k.is_some();
+    let (mut t, inv) = local_alpha_iteration(material, geo, &kin, &mut al, eas, linear, want_k)?;
+    if eas {
+        condense(&mut t, &inv, want_k);
+        alpha.copy_from_slice(&al);
+    }
+    if let Some(kout) = k {
+        for i in 0..8 {
+            for j in i..8 {
+                kout[8 * i + j] = t.kuu[i][j];
+                kout[8 * j + i] = t.kuu[i][j];
+            }
+        }
+    }
+    r.copy_from_slice(&t.ru);
+    Ok(t.energy)
+}
+
+/// The local Newton iteration on `α` for displacements whose kinematics are `kin` (one
+/// step is exact for a linear `S(E)`; none for `Q4`): passes over the Gauss points that
+/// evaluate `R_α`, `K_αα` while the steps are large and, once a step changes no enhanced
+/// strain by more than [`EAS_NEAR`], the displacement terms too, until a full pass finds
+/// `α` converged ([`EAS_STRAIN_TOLERANCE`]). Returns that pass's sums and `K_αα⁻¹`; `al` is
+/// the converged `α`.
+fn local_alpha_iteration(
+    material: &Material,
+    geo: &QuadGeometry,
+    kin: &[GaussKin; 4],
+    al: &mut [f64; 4],
+    eas: bool,
+    linear: Option<&LinearEas>,
+    want_k: bool,
+) -> Result<(Sums, Matrix4<f64>), ElementError> {
     let norm4 = |v: &[f64; 4]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     let mut last_step = false;
     // Local Newton on α (one step is exact for linear S(E)); the displacement terms are
     // evaluated from the second pass on (a pass at a converged α is the last one).
     let mut it = usize::from(linear.is_some());
     let mut near = linear.is_some();
-    let (mut t, inv) = loop {
+    let out = loop {
         let full = !eas || near;
         let wanted = Wanted {
             eas,
@@ -576,7 +638,7 @@ pub fn quad_residual_tangent_with(
             full,
             k: want_k,
         };
-        let t = gauss_pass(material, geo, &kin, &al, wanted)?;
+        let t = gauss_pass(material, geo, kin, al, wanted)?;
         if !eas {
             break (t, Matrix4::zeros());
         }
@@ -606,20 +668,7 @@ pub fn quad_residual_tangent_with(
         near = step <= EAS_NEAR || it >= 12;
         it += 1;
     };
-    if eas {
-        condense(&mut t, &inv, want_k);
-        alpha.copy_from_slice(&al);
-    }
-    if let Some(kout) = k {
-        for i in 0..8 {
-            for j in i..8 {
-                kout[8 * i + j] = t.kuu[i][j];
-                kout[8 * j + i] = t.kuu[i][j];
-            }
-        }
-    }
-    r.copy_from_slice(&t.ru);
-    Ok(t.energy)
+    Ok(out)
 }
 
 /// Static condensation of the enhanced-strain parameters at a converged `α`:
