@@ -33,6 +33,11 @@ pub struct Timings {
     /// assembled again with the tangent.
     pub tangents_skipped: usize,
     pub tangents_missed: usize,
+    /// Corrections at which points rested at the normal kink and the open correction drove
+    /// some of them in, so that the resting side was tried (`solver::newton`'s choice of the
+    /// kink's side), and those at which it was taken.
+    pub kink_trials: usize,
+    pub resting_corrections: usize,
     pub factorizations: usize,
     /// Threads the run could use for its element kernels (the calling one included), and
     /// the assemblies whose kernels ran on them (the others ran on the calling thread alone,

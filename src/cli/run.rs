@@ -468,6 +468,12 @@ fn time_split(s: &contrail::solver::RunSummary) -> String {
         "{} assemblies ({} with the tangent; {} without, expected to converge, {} of them wrongly), {} factorisations",
         t.assemblies, t.tangent_assemblies, t.tangents_skipped, t.tangents_missed, t.factorizations
     ));
+    if t.kink_trials > 0 {
+        out.push(format!(
+            "resting points tried active at {} corrections, taken at {}",
+            t.kink_trials, t.resting_corrections
+        ));
+    }
     out.push(match t.threads {
         0 | 1 => "one thread".to_string(),
         n => format!(

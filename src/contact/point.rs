@@ -413,7 +413,8 @@ impl PointProblem {
     /// the decided state (the condensed system's right-hand side), the residual `r_eq` of
     /// the force unknowns (`−N ∇ζ − T_1 ∇ξ` with the unknowns of [`Rule::AlartCurnier`]; equal
     /// to `r` under [`Rule::Penalty`]), the condensed tangent `k` and the linearisation of
-    /// the penalty forces. Returns the plain evaluation.
+    /// the penalty forces (of an open point: of the normal force it would have closed).
+    /// Returns the plain evaluation.
     ///
     /// `k = −∇ζ ∇Nᵀ − N̄ ∇²ζ − ∇ξ ∇T_1ᵀ − T̄_1 ∇²ξ`: the gradients are the penalty forces'
     /// in the decided state (`∇N = −ε_N ∇ζ`), the Hessian terms weigh the geometry by the
@@ -478,6 +479,13 @@ impl PointProblem {
             // capstan belt: 29 cut-backs with them, 5 without)
             for i in 0..N {
                 r_eq[i] = -n_bar * gz[i] - t_bar * gx[i];
+            }
+            // the penalty's normal force had the point been closed, `N_ε = λ_N − ε_N ζ` and
+            // `∇N_ε = −ε_N ∇ζ`: whether a correction drives an open point in
+            let lambda_n = self.multiplier.map_or(0.0, |m| m.normal);
+            lin.normal = lambda_n - self.law.eps_n * zeta.re;
+            for i in 0..N {
+                lin.d_normal[i] = -self.law.eps_n * gz[i];
             }
         } else {
             // r = −N ∇ζ − T_1 ∇ξ with the penalty forces; K as in the docs above

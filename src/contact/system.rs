@@ -19,6 +19,7 @@ use super::transfer::StoredTraction;
 use crate::model::{ContactPair, Enforcement, Master, Model, Slave, Smoothing};
 
 mod unknowns;
+pub use unknowns::RestingForces;
 
 /// Contact state of all pairs.
 #[derive(Debug, Clone, Default)]
@@ -34,15 +35,19 @@ pub struct ContactSystem {
     forces: Vec<Vec<Forces>>,
     forces_base: Vec<Vec<Forces>>,
     forces_step: Vec<Vec<Forces>>,
-    /// Each point's local nodes and penalty linearisation at the last evaluation (closed
-    /// points; `None` otherwise), for the update of its force unknowns.
+    /// Each point's local nodes and penalty linearisation at the last evaluation (`None`
+    /// where it was not evaluated), for the update of its force unknowns (of the closed
+    /// points) and the choice of the kink's side (of the open ones).
     lin: Vec<Vec<Option<(Slots, Linearization)>>>,
     /// The weights `ρ_N, ρ_T` of each pair's augmented forces (1: the penalty rule).
     weights: Vec<(f64, f64)>,
     /// Every point decided by the penalty rule (the check of a converged iterate).
     penalty_rule: bool,
-    /// Which side of the normal kink touching points take ([`Kink`]).
+    /// Which side of the normal kink touching points take ([`Kink`]); with `resting_some`,
+    /// [`Kink::Resting`] only for the points marked in `resting`.
     kink: Kink,
+    resting_some: bool,
+    resting: Vec<Vec<bool>>,
     /// Decide the points closed at the last converged increment by their force unknowns
     /// alone (the first iterate of an attempt).
     warm: bool,
@@ -244,6 +249,8 @@ impl ContactSystem {
             weights: model.contacts.iter().map(|p| augmented_weights(model, p)).collect(),
             penalty_rule: false,
             kink: Kink::Open,
+            resting_some: false,
+            resting: model.contacts.iter().map(|p| vec![false; p.slaves.len()]).collect(),
             warm: false,
             complementarity2: 0.0,
             current_base: current,
@@ -393,7 +400,10 @@ impl ContactSystem {
                     true => Rule::Penalty,
                     false => Rule::AlartCurnier { forces, rho_n, rho_t },
                 };
-                problem.kink = self.kink;
+                problem.kink = match self.resting_some && !self.resting[ip][is] {
+                    true => Kink::Open,
+                    false => self.kink,
+                };
                 // the first iterate's active set is the converged one where there is one
                 problem.warm = self.warm && hist.closed;
                 problem.at_vertex = paired.pinned.then_some(loc.xi.signum());
@@ -424,9 +434,7 @@ impl ContactSystem {
                     });
                     assemble(slots.nodes(), &r[..nd], &r_eq[..nd], &k[..nd * nd], &weights[..nd]);
                 }
-                if e.state != ContactState::Open {
-                    self.lin[ip][is] = Some((slots, lin));
-                }
+                self.lin[ip][is] = Some((slots, lin));
             }
         }
     }

@@ -98,6 +98,9 @@ pub fn force_scale(model: &Model, asm: &Assembler, contact: &crate::contact::sys
 pub struct Workspace {
     pub(super) r: Vec<f64>,
     pub(super) du: Vec<f64>,
+    /// The correction with the points at the normal kink open, while the other element is
+    /// tried ([`Iterate::choose_kink_side`]).
+    pub(super) du_open: Vec<f64>,
     /// `‖R‖` at each iterate of the last attempt.
     pub residuals: Vec<f64>,
     /// The merit function at each iterate of the last attempt.
@@ -436,15 +439,77 @@ impl<'a> Iterate<'a> {
         let solved = self.solve_direction();
         let sane = |du: &[f64]| du.iter().all(|d| d.abs() <= size);
         let open = self.state.contact.kink() == Kink::Open;
-        if (solved.is_ok() && sane(&self.ws.du)) || !open || self.state.contact.resting_points() == 0 {
+        if !open || self.state.contact.resting_points() == 0 {
             return solved;
         }
+        if solved.is_ok() && sane(&self.ws.du) {
+            return self.choose_kink_side();
+        }
         self.solve_resting()
+    }
+
+    /// The open correction in `ws.du` is consistent unless it drives points resting at the
+    /// kink into their master with a force above the residual tolerance (the element of the
+    /// generalised Jacobian it was made with says they carry no force, the correction that
+    /// they would). Then the other element is tried for those points — they rest (and
+    /// stick, at the tangential kink), the other points at the kink stay open — and its
+    /// correction is taken if it is consistent in turn: every resting point pressed onto
+    /// its master along it, within its friction cone ([`ContactSystem::resting_forces`]). Forces within the residual tolerance are
+    /// zero to this test, as to the convergence test: a point that carries no force either
+    /// way (where strict complementarity fails) is no reason to leave the open side.
+    /// Otherwise the open correction stays, and the next iterate decides by its gaps, as
+    /// the primal–dual active-set method does (Hintermüller, Ito & Kunisch 2003). The
+    /// choice between the two elements of the B-subdifferential by the sign conditions of
+    /// the step is Qi & Sun's (Math Program 58 (1993) 353–367) and the contact form of it
+    /// Hüeber & Wohlmuth's (CMAME 194 (2005) 3147–3166, §3).
+    ///
+    /// [`ContactSystem::resting_forces`]: crate::contact::system::ContactSystem::resting_forces
+    fn choose_kink_side(&mut self) -> Result<(), NewtonFailure> {
+        let tol = self.norms.tol;
+        let (eq, du) = (&self.asm.dofs.eq, &self.ws.du);
+        let driven_in = (self.state.contact).rest_driven_in(self.model, tol, &|d| eq[d].map_or(0.0, |e| du[e]));
+        if driven_in == 0 {
+            return Ok(());
+        }
+        self.asm.timings.kink_trials += 1;
+        self.ws.du_open.clone_from(&self.ws.du);
+        let warm = self.ws.residuals.len() == 1;
+        self.assemble_iterate(Kink::Resting, warm, true)?;
+        let solved = self.solve_direction().is_ok();
+        let (eq, du) = (&self.asm.dofs.eq, &self.ws.du);
+        let resting = self
+            .state
+            .contact
+            .resting_forces(self.model, false, &|d| eq[d].map_or(0.0, |e| du[e]));
+        if solved && resting.is_some_and(|f| f.normal_min > tol && f.cone_excess <= tol) {
+            self.asm.timings.resting_corrections += 1;
+            return Ok(());
+        }
+        self.state.contact.rest_all();
+        self.assemble_iterate(Kink::Open, warm, false)?;
+        self.ws.du.clone_from(&self.ws.du_open);
+        Ok(())
+    }
+
+    /// Assemble the iterate again with the points at the normal kink on `kink`'s side (and
+    /// its first decision by the force unknowns where `warm`; the tangent if `tangent`),
+    /// as the iterate's merit and residual.
+    fn assemble_iterate(&mut self, kink: Kink, warm: bool, tangent: bool) -> Result<(), NewtonFailure> {
+        self.state.contact.set_kink(kink);
+        self.state.contact.set_warm_start(warm);
+        let assembled = self.assemble(tangent);
+        self.state.contact.set_warm_start(false);
+        assembled?;
+        let merit = self.asm.merit(&self.state.contact);
+        *self.ws.merits.last_mut().expect("the iterate was tested") = merit;
+        self.asm.free_residual(&mut self.ws.r);
+        Ok(())
     }
 
     /// Assemble the iterate with the points at the normal kink resting ([`Kink::Resting`])
     /// and solve for the correction.
     fn solve_resting(&mut self) -> Result<(), NewtonFailure> {
+        self.state.contact.rest_all();
         self.state.contact.set_kink(Kink::Resting);
         self.assemble(true)?;
         let merit = self.asm.merit(&self.state.contact);

@@ -35,6 +35,7 @@ impl ContactSystem {
         self.left.iter_mut().flatten().for_each(|l| *l = None);
         self.penalty_rule = false;
         self.kink = Kink::Open;
+        self.resting_some = false;
         for (forces, hist) in self.forces.iter_mut().zip(&self.committed) {
             for (f, h) in forces.iter_mut().zip(hist) {
                 *f = match h.closed {
@@ -55,9 +56,33 @@ impl ContactSystem {
     }
 
     /// Take the points at the normal kink (touching without force) on `kink`'s side at the
-    /// next evaluations ([`Kink`]).
+    /// next evaluations ([`Kink`]): all of them, or, after [`Self::rest_driven_in`], those
+    /// it marked.
     pub fn set_kink(&mut self, kink: Kink) {
         self.kink = kink;
+    }
+
+    /// Mark, of the points at the normal kink that the last evaluation took open, those
+    /// that the correction `du` drives into their master with a normal force above `tol`
+    /// ([`Self::resting_forces`]), as the only points [`Kink::Resting`] rests from now on
+    /// (until [`Self::rest_all`]). Returns how many were marked.
+    pub fn rest_driven_in(&mut self, model: &Model, tol: f64, du: &dyn Fn(usize) -> f64) -> usize {
+        let mut marked = 0;
+        for ip in 0..model.contacts.len() {
+            for is in 0..self.resting[ip].len() {
+                let one = self.point_resting_forces(model, ip, is, true, du);
+                let driven_in = one.is_some_and(|f| f.normal_max > tol);
+                self.resting[ip][is] = driven_in;
+                marked += usize::from(driven_in);
+            }
+        }
+        self.resting_some = true;
+        marked
+    }
+
+    /// [`Kink::Resting`] rests every point at the normal kink again.
+    pub fn rest_all(&mut self) {
+        self.resting_some = false;
     }
 
     /// Decide the states by the force unknowns alone at the next evaluations (see
@@ -131,6 +156,8 @@ impl ContactSystem {
         copy(&mut self.multipliers, &other.multipliers);
         self.penalty_rule = other.penalty_rule;
         self.kink = other.kink;
+        self.resting_some = other.resting_some;
+        copy(&mut self.resting, &other.resting);
         self.warm = other.warm;
         self.complementarity2 = other.complementarity2;
         self.tunnelled.clear();
@@ -152,9 +179,10 @@ impl ContactSystem {
     /// `N + ΔN = N_ε + ∇N_ε · Δu`, `T_1 + ΔT_1 = T_1,ε + ∇T_1,ε · Δu` of the decided state
     /// (the linearised constitutive equations; zero at an open point).
     pub fn correct_forces(&mut self, du: &dyn Fn(usize) -> f64) {
-        for (steps, lins) in self.forces_step.iter_mut().zip(&self.lin) {
-            for (step, lin) in steps.iter_mut().zip(lins) {
-                *step = match lin {
+        for ((steps, lins), now) in self.forces_step.iter_mut().zip(&self.lin).zip(&self.current) {
+            for ((step, lin), p) in steps.iter_mut().zip(lins).zip(now) {
+                let closed = p.eval.is_some_and(|e| e.state != ContactState::Open);
+                *step = match lin.filter(|_| closed) {
                     None => Forces::default(),
                     Some((slots, l)) => {
                         let mut n = l.normal;
@@ -176,6 +204,66 @@ impl ContactSystem {
         }
     }
 
+    /// The contact forces, linearised along the correction `du` (global DOFs, zero where
+    /// prescribed), of the points at the normal kink (touching, without a normal force
+    /// unknown) that the last evaluation took open (`open`: the normal force they would
+    /// have closed) or closed ([`Kink::Resting`]); `None` when there is none. Along the
+    /// correction made with every such point open, a positive normal force says the
+    /// correction drives a point into its master; along the correction made with them
+    /// resting, a negative one says a point would have to pull, and a tangential force
+    /// outside Coulomb's cone that it would have to slip.
+    pub fn resting_forces(&self, model: &Model, open: bool, du: &dyn Fn(usize) -> f64) -> Option<RestingForces> {
+        let mut out: Option<RestingForces> = None;
+        for ip in 0..model.contacts.len() {
+            for is in 0..self.current[ip].len() {
+                let Some(f) = self.point_resting_forces(model, ip, is, open, du) else {
+                    continue;
+                };
+                let r = out.get_or_insert(f);
+                r.normal_min = r.normal_min.min(f.normal_min);
+                r.normal_max = r.normal_max.max(f.normal_max);
+                r.cone_excess = r.cone_excess.max(f.cone_excess);
+            }
+        }
+        out
+    }
+
+    /// [`Self::resting_forces`] of point `is` of pair `ip` alone (`None` unless it is at the
+    /// kink on the side `open` says; with [`Self::rest_driven_in`]'s marks, only a marked
+    /// point counts as resting).
+    fn point_resting_forces(
+        &self,
+        model: &Model,
+        ip: usize,
+        is: usize,
+        open: bool,
+        du: &dyn Fn(usize) -> f64,
+    ) -> Option<RestingForces> {
+        let (Some(e), Some((slots, l))) = (self.current[ip][is].eval, self.lin[ip][is]) else {
+            return None;
+        };
+        let marked = open || !self.resting_some || self.resting[ip][is];
+        let at_kink = (e.state == ContactState::Open) == open
+            && crate::contact::point::touching(e.proj.gap, e.proj.a11)
+            && self.forces[ip][is].normal <= 0.0;
+        if !(marked && at_kink) {
+            return None;
+        }
+        let (mut n, mut t1) = (l.normal, l.t1);
+        for (i, &node) in slots.nodes().iter().enumerate() {
+            for c in 0..2 {
+                n += l.d_normal[2 * i + c] * du(2 * node + c);
+                t1 += l.d_t1[2 * i + c] * du(2 * node + c);
+            }
+        }
+        let mu = model.contacts[ip].law.mu;
+        Some(RestingForces {
+            normal_min: n,
+            normal_max: n,
+            cone_excess: t1.abs() / l.a11.sqrt() - mu * n.max(0.0),
+        })
+    }
+
     /// Go back to the iterate kept by [`Self::save_iterate`], with the force unknowns a
     /// fraction `s` of the way to the full correction's.
     pub fn to_step(&mut self, s: f64) {
@@ -191,6 +279,18 @@ impl ContactSystem {
             }
         }
     }
+}
+
+/// The linearised contact forces of the resting points along a correction
+/// ([`ContactSystem::resting_forces`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RestingForces {
+    /// The smallest and the largest normal force.
+    pub normal_min: f64,
+    pub normal_max: f64,
+    /// The largest excess of a tangential force over Coulomb's bound, `|t| − μ⟨N⟩`
+    /// (negative: every point inside its cone).
+    pub cone_excess: f64,
 }
 
 /// Whether a point is at the normal kink: open, resting on its master within the geometry's
