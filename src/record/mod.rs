@@ -116,6 +116,9 @@ pub struct IncrementRecord {
     /// Sum of all reaction forces (x, y).
     #[serde(with = "Real2")]
     pub reaction_total: [f64; 2],
+    /// The z component of the sum of the reactions (3D models only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reaction_z: Option<f64>,
     /// Which convergence test accepted the increment: `residual` (‖R‖ ≤ tol · F_ref and the
     /// energy test), `round-off` (‖R‖ at the assembled residual's round-off floor) or
     /// `start` (the first iterate met the residual test); empty in older recordings.
@@ -398,8 +401,9 @@ pub enum Outcome {
 
 /// What an observer sees at the end of a converged increment.
 pub struct StepView<'a> {
-    pub model: &'a crate::model::Model,
-    /// Full displacement vector (2 per node).
+    /// The model, of either dimension (2D sinks draw [`crate::model::ModelRef::plane`]).
+    pub model: crate::model::ModelRef<'a>,
+    /// Full displacement vector (`D` per node).
     pub u: &'a [f64],
     pub contact: &'a [ContactPointRecord],
     pub crossings: &'a [CrossingRecord],
