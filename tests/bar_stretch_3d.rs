@@ -67,7 +67,7 @@ fn a_bar_stretched_to_one_and_a_half_has_the_closed_form_force_and_contraction()
     let info = contrail::run_info(&src, &[], &problem);
     let mut mem = Memory::default();
     let s = contrail::solver::run(&problem, &info, &mut mem, &AtomicBool::new(false)).expect("converges");
-    let (young, nu, stretch, area) = (200.0, 0.3, 1.5, 2.0);
+    let (young, nu, stretch, area): (f64, f64, f64, f64) = (200.0, 0.3, 1.5, 2.0);
     let e11 = (stretch * stretch - 1.0) / 2.0;
     let force = stretch * young * e11 * area;
     let lateral = (1.0 - 2.0 * nu * e11).sqrt() - 1.0; // y = 1: u_y = (λ_t − 1) · 1
