@@ -36,7 +36,7 @@ enum Message {
     Start(Box<AnyModel>, Box<RunInfo>),
     Iteration(IterationRecord),
     Increment {
-        rec: IncrementRecord,
+        rec: Box<IncrementRecord>,
         u: Vec<f64>,
         contact: Vec<Point>,
         crossings: Vec<CrossingRecord>,
@@ -260,7 +260,7 @@ impl Observer for Background {
             + std::mem::size_of::<Point>() * view.contact.len()
             + std::mem::size_of_val(view.crossings);
         let m = Message::Increment {
-            rec: rec.clone(),
+            rec: Box::new(rec.clone()),
             u: view.u.to_vec(),
             contact: view.contact.iter().map(Point::of).collect(),
             crossings: view.crossings.to_vec(),
