@@ -27,8 +27,8 @@ struct Tape {
     outcome: Option<Outcome>,
 }
 impl Observer for Tape {
-    fn start(&mut self, m: &Model, i: &RunInfo) -> Result<(), ObserverError> {
-        self.model = Some(m.clone());
+    fn start(&mut self, m: contrail::model::ModelRef<'_>, i: &RunInfo) -> Result<(), ObserverError> {
+        self.model = Some(m.plane().clone());
         self.info = Some(i.clone());
         Ok(())
     }
@@ -53,7 +53,7 @@ fn replay(t: &Tape, opts: McapOptions) -> (f64, usize) {
     let start = Instant::now();
     let mut sink = McapSink::new(Cursor::new(Vec::with_capacity(64 << 20)), "m", opts).unwrap();
     let model = t.model.as_ref().unwrap();
-    sink.start(model, t.info.as_ref().unwrap()).unwrap();
+    sink.start(model.view(), t.info.as_ref().unwrap()).unwrap();
     let (mut i, mut k) = (0, 0);
     for &inc in &t.order {
         if inc {
@@ -62,7 +62,7 @@ fn replay(t: &Tape, opts: McapOptions) -> (f64, usize) {
             sink.increment(
                 r,
                 &StepView {
-                    model,
+                    model: model.view(),
                     u,
                     contact: c,
                     crossings: x,

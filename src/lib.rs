@@ -42,8 +42,23 @@ pub fn load_scene(
     Ok((src, problem))
 }
 
+/// Load a scene of either dimension (built-in name or path), apply overrides and build it.
+pub fn load_any_scene(
+    name_or_path: &str,
+    sets: &[String],
+) -> Result<(scene::SceneSource, scene::AnyProblem), scene::SceneError> {
+    let src = scene::SceneSource::resolve(name_or_path)?;
+    let file = scene::parse(&src, sets)?;
+    let problem = scene::build_any(&src, &file)?;
+    Ok((src, problem))
+}
+
 /// Run metadata for a model.
-pub fn run_info(src: &scene::SceneSource, sets: &[String], problem: &problem::Problem) -> record::RunInfo {
+pub fn run_info<S: model::Dim>(
+    src: &scene::SceneSource,
+    sets: &[String],
+    problem: &problem::Problem<S>,
+) -> record::RunInfo {
     let model = &problem.model;
     let asm_free = assembly::DofMap::new(model).n_free;
     record::RunInfo {

@@ -1,12 +1,12 @@
 //! A problem: what a scene becomes, the model and how to solve it. The model holds no solver
 //! settings, so one model can be run with other stepping or Newton settings (a study).
 
-use crate::model::Model;
+use crate::model::{Dim, Model, Plane};
 use crate::settings::SolverSettings;
 
-/// A model and the settings it is solved with.
+/// A model (2D by default, or 3D) and the settings it is solved with.
 #[derive(Debug, Clone, Default)]
-pub struct Problem {
-    pub model: Model,
+pub struct Problem<S: Dim = Plane> {
+    pub model: Model<S>,
     pub settings: SolverSettings,
 }

@@ -97,7 +97,7 @@ fn flips_truncations_and_junk_are_errors() {
 /// Write a recording of `model` with no increments (its `/model` record as given).
 fn model_only(model: &Model, info: &RunInfo) -> Vec<u8> {
     let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", McapOptions::default()).unwrap();
-    sink.start(model, info).unwrap();
+    sink.start(model.view(), info).unwrap();
     sink.finish(&Outcome::Completed { increments: 0, t: 0.0 }).unwrap();
     sink.into_inner().unwrap().into_inner()
 }
@@ -182,8 +182,8 @@ fn concurrent_writers_of_one_file_leave_a_complete_recording() {
     let (model, info) = load(&["stepping.increments=12", "stepping.end=0.3"]);
     let mut a = McapSink::create(&path, McapOptions::default()).unwrap();
     let mut b = McapSink::create(&path, McapOptions::default()).unwrap();
-    a.start(&model.model, &info).unwrap();
-    b.start(&model.model, &info).unwrap();
+    a.start(model.model.view(), &info).unwrap();
+    b.start(model.model.view(), &info).unwrap();
     assert!(
         !path.exists(),
         "the final name appears only when a recording is complete"

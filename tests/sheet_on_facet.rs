@@ -123,7 +123,7 @@ impl contrail::record::Observer for Watch {
         rec: &contrail::record::IncrementRecord,
         view: &contrail::record::StepView,
     ) -> Result<(), contrail::record::ObserverError> {
-        for (n, x) in view.model.nodes.iter().enumerate().take(401) {
+        for (n, x) in view.model.plane().nodes.iter().enumerate().take(401) {
             let (px, py) = (x[0] + view.u[2 * n], x[1] + view.u[2 * n + 1]);
             if px.abs() < 1.0 && py < 1.0 {
                 self.deepest = self.deepest.max((1.0 - py).min(1.0 - px.abs()));

@@ -92,8 +92,8 @@ pub fn inspect(r: &Recording) -> InspectReport {
         git_revision: meta("git_revision"),
         writer: r.library.clone(),
         format_version: meta("format_version"),
-        nodes: r.model.nodes.len(),
-        elements: r.model.elements.len(),
+        nodes: r.model.node_count(),
+        elements: r.model.elements.len() + r.model.hexahedra.len(),
         contact_pairs: r
             .model
             .contacts

@@ -13,7 +13,10 @@ pub const MAX_INCREMENT: usize = u32::MAX as usize;
 
 /// Check the `/model` record; the error says what is wrong.
 pub fn check_model(m: &ModelRecord) -> Result<(), String> {
-    let n = m.nodes.len();
+    let n = m.node_count();
+    if m.dim() != 2 && m.dim() != 3 {
+        return Err(format!("dimension {}: neither 2 nor 3", m.dim()));
+    }
     let node = |what: &str, i: usize| -> Result<(), String> {
         if i < n {
             Ok(())
@@ -26,10 +29,15 @@ pub fn check_model(m: &ModelRecord) -> Result<(), String> {
             node(&format!("element {k}"), i)?;
         }
     }
-    if m.element_body.len() != m.elements.len() {
+    for (k, e) in m.hexahedra.iter().enumerate() {
+        for &i in e {
+            node(&format!("hexahedron {k}"), i)?;
+        }
+    }
+    let elements = m.elements.len() + m.hexahedra.len();
+    if m.element_body.len() != elements {
         return Err(format!(
-            "{} elements but {} element bodies",
-            m.elements.len(),
+            "{elements} elements but {} element bodies",
             m.element_body.len()
         ));
     }
@@ -77,7 +85,10 @@ pub(crate) fn check_records(m: &ModelRecord, b: &Builder) -> Result<(), (String,
         last = inc.increment;
     }
     for p in &b.positions {
-        if p.nodes.len() != m.nodes.len() || p.rigid_offsets.len() != m.rigid.len() {
+        if p.nodes.len() != m.nodes.len()
+            || p.nodes_3d.len() != m.nodes_3d.len()
+            || p.rigid_offsets.len() != m.rigid.len()
+        {
             return err(
                 schemas::POSITIONS,
                 format!(

@@ -7,11 +7,12 @@ pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::element::material::Material;
-use crate::element::quad::{quad_residual_tangent_with, ElementError, Kinematics, QuadGeometry};
+use crate::element::quad::ElementError;
 use crate::linalg::chooser::LinearSolve;
 use crate::linalg::factorization::LinearError;
 use crate::linalg::sparse::SparseMatrix;
-use crate::model::Model;
+use crate::model::dim::Filled;
+use crate::model::{Dim, Model, Plane};
 use std::time::{Duration, Instant};
 
 /// Where the time of the Newton iterations went (accumulated over a run).
@@ -54,7 +55,7 @@ const NONE: u32 = u32::MAX;
 /// coordinates of order one it is `≈ 10⁻⁹ E`, which the criterion `1e-9 F_ref` cannot go below.
 const CONTACT_ROUNDOFF: f64 = 10.0 * f64::EPSILON / 1e-13;
 
-/// Map from global DOFs (`2 node + component`) to free equations.
+/// Map from global DOFs (`D node + component`) to free equations.
 #[derive(Debug, Clone)]
 pub struct DofMap {
     /// Equation of each DOF, or `None` when prescribed.
@@ -69,7 +70,7 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    pub fn new(model: &Model) -> Self {
+    pub fn new<S: Dim>(model: &Model<S>) -> Self {
         let n = model.dof_count();
         let mut fixed = vec![false; n];
         for p in &model.prescribed {
@@ -102,26 +103,18 @@ impl DofMap {
 }
 
 /// `100 ε_mach √Σ_e (E_e h_e w_e)²`, `E_e` Young's modulus, `h_e` the longest edge, `w_e`
-/// the measure of the element's forces beyond plane strain: 1 in plane strain, the thickness
-/// in plane stress, `2π R_e` (`R_e` the largest nodal radius) in the axisymmetric setting.
-fn material_floor(model: &Model) -> f64 {
+/// the measure of the element's forces beyond plane strain: 1 in plane strain and 3D, the
+/// thickness in plane stress, `2π R_e` (`R_e` the largest nodal radius) in the axisymmetric
+/// setting ([`Dim::force_measure`]).
+fn material_floor<S: Dim>(model: &Model<S>) -> f64 {
     let mut sum = 0.0;
     for el in &model.elements {
         let body = &model.bodies[el.body];
         let (Material::SaintVenantKirchhoff { lambda, mu } | Material::NeoHookean { lambda, mu }) = body.material;
         let young = mu * (3.0 * lambda + 2.0 * mu) / (lambda + mu);
-        let mut h = 0.0f64;
-        for i in 0..4 {
-            let (a, b) = (model.nodes[el.nodes[i]], model.nodes[el.nodes[(i + 1) % 4]]);
-            h = h.max((a[0] - b[0]).hypot(a[1] - b[1]));
-        }
-        let w = match body.kinematics {
-            Kinematics::PlaneStrain => 1.0,
-            Kinematics::PlaneStress { thickness } => thickness,
-            Kinematics::Axisymmetric => {
-                2.0 * std::f64::consts::PI * el.nodes.iter().map(|&n| model.nodes[n][0]).fold(0.0, f64::max)
-            }
-        };
+        let x: Vec<S::Point> = el.nodes.as_ref().iter().map(|&n| model.nodes[n]).collect();
+        let h = S::longest_edge(&x);
+        let w = S::force_measure(&body.kinematics, &x);
         sum += (young * h * w).powi(2);
     }
     100.0 * f64::EPSILON * sum.sqrt()
@@ -136,14 +129,16 @@ pub struct AssemblyError {
     pub source: ElementError,
 }
 
-/// Owns the sparse tangent, its linear solves and the scatter maps.
-pub struct Assembler {
+/// Owns the sparse tangent, its linear solves and the scatter maps, for a model of
+/// dimension `S` (the element kernels and their local arrays are the dimension's).
+pub struct Assembler<S: Dim = Plane> {
     pub dofs: DofMap,
     pub matrix: SparseMatrix,
     /// The factorisations of the tangent (chosen by the `linear_solver` setting).
     pub linear: LinearSolve,
-    /// Value index of each element-matrix entry (row-major 8×8), `NONE` where prescribed.
-    elem_slots: Vec<[u32; 64]>,
+    /// Value index of each element-matrix entry (row-major, `8×8` in 2D, `24×24` in 3D),
+    /// `NONE` where prescribed.
+    elem_slots: Vec<S::Slots>,
     /// Full residual `f_int + f_contact − f_ext` over all DOFs (reactions at prescribed DOFs).
     pub r_full: Vec<f64>,
     /// Sum of the absolute element and contact contributions per DOF (round-off scale).
@@ -161,13 +156,13 @@ pub struct Assembler {
     /// Time spent in assembly (the factorisation times are the matrix's).
     pub timings: Timings,
     /// Reference geometry of each element (computed once; an invalid one fails assembly).
-    geometry: Vec<Result<QuadGeometry, ElementError>>,
+    geometry: Vec<Result<S::Geometry, ElementError>>,
     /// The team that shares the element kernels with the calling thread (`None`: one
     /// thread), and the measured choice of whether it pays ([`pacing`]).
     team: Option<team::Team>,
     pub pacing: pacing::Pacing,
     /// Per-element outputs of one block of the team's path (allocated once).
-    block: Vec<ElementOut>,
+    block: Vec<ElementOut<S>>,
     /// The skew supports, held in their nodes' local frames ([`skew`]).
     pub skew: skew::Skew,
 }
@@ -216,54 +211,52 @@ impl<T> SharedMut<T> {
 
 /// One element's kernel output: residual, tangent, energy, or the failure.
 #[derive(Clone, Copy)]
-struct ElementOut {
-    re: [f64; 8],
-    ke: [f64; 64],
+struct ElementOut<S: Dim> {
+    re: S::Re,
+    ke: S::Ke,
     energy: Result<f64, ElementError>,
 }
 
-impl Default for ElementOut {
+impl<S: Dim> Default for ElementOut<S> {
     fn default() -> Self {
         ElementOut {
-            re: [0.0; 8],
-            ke: [0.0; 64],
+            re: S::Re::filled(0.0),
+            ke: S::Ke::filled(0.0),
             energy: Ok(0.0),
         }
     }
 }
 
-fn element_eqs(dofs: &DofMap, nodes: &[usize; 4]) -> [Option<usize>; 8] {
-    let mut e = [None; 8];
-    for (i, &n) in nodes.iter().enumerate() {
-        e[2 * i] = dofs.eq[2 * n];
-        e[2 * i + 1] = dofs.eq[2 * n + 1];
-    }
-    e
+/// The equations of an element's DOFs (`D` per node, in node order).
+fn element_eqs<S: Dim>(dofs: &DofMap, nodes: &S::Cell) -> Vec<Option<usize>> {
+    (nodes.as_ref().iter())
+        .flat_map(|&n| (0..S::D).map(move |c| dofs.eq[S::D * n + c]))
+        .collect()
 }
 
-impl Assembler {
-    pub fn new(model: &Model) -> Self {
+impl<S: Dim> Assembler<S> {
+    pub fn new(model: &Model<S>) -> Self {
         let dofs = DofMap::new(model);
         let mut groups = model
             .elements
             .iter()
-            .map(|el| element_eqs(&dofs, &el.nodes).iter().flatten().copied().collect());
+            .map(|el| element_eqs::<S>(&dofs, &el.nodes).iter().flatten().copied().collect());
         let matrix = SparseMatrix::new(dofs.n_free, &mut groups);
-        let skew = skew::Skew::new(model, &dofs.eq, dofs.n_free);
+        let skew = skew::Skew::new(model.plane(), &dofs.eq, dofs.n_free);
         let mut linear = LinearSolve::default();
-        // a skew node's equations are in its local frame: not in the near-null space
-        let turned: std::collections::HashSet<usize> = skew.dofs.iter().map(|s| s.node).collect();
-        linear.set_nodes(
-            model
-                .nodes
-                .iter()
-                .enumerate()
-                .map(|(i, x)| match turned.contains(&i) {
-                    true => ([None, None], *x),
-                    false => ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x),
-                })
-                .collect(),
-        );
+        if S::D == 2 {
+            let plane = model.plane();
+            // a skew node's equations are in its local frame: not in the near-null space
+            let turned: std::collections::HashSet<usize> = skew.dofs.iter().map(|s| s.node).collect();
+            linear.set_nodes(
+                (plane.nodes.iter().enumerate())
+                    .map(|(i, x)| match turned.contains(&i) {
+                        true => ([None, None], *x),
+                        false => ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x),
+                    })
+                    .collect(),
+            );
+        }
         let mut a = Assembler {
             dofs,
             matrix,
@@ -280,9 +273,8 @@ impl Assembler {
                 .elements
                 .iter()
                 .map(|el| {
-                    let body = &model.bodies[el.body];
-                    let x = el.nodes.map(|n| model.nodes[n]);
-                    QuadGeometry::with_kinematics(body.kind, &body.material, body.kinematics, &x)
+                    let x: Vec<S::Point> = el.nodes.as_ref().iter().map(|&n| model.nodes[n]).collect();
+                    S::geometry(&model.bodies[el.body], &x)
                 })
                 .collect(),
             team: None,
@@ -314,15 +306,16 @@ impl Assembler {
 
     /// Add one element's residual and tangent into the global arrays.
     #[inline]
-    fn scatter_element(&mut self, ie: usize, nodes: &[usize; 4], re: &[f64; 8], ke: Option<&[f64; 64]>) {
-        for (i, &n) in nodes.iter().enumerate() {
-            self.r_full[2 * n] += re[2 * i];
-            self.r_full[2 * n + 1] += re[2 * i + 1];
-            self.r_abs[2 * n] += re[2 * i].abs();
-            self.r_abs[2 * n + 1] += re[2 * i + 1].abs();
+    fn scatter_element(&mut self, ie: usize, nodes: &S::Cell, re: &S::Re, ke: Option<&S::Ke>) {
+        let re = re.as_ref();
+        for (i, &n) in nodes.as_ref().iter().enumerate() {
+            for c in 0..S::D {
+                self.r_full[S::D * n + c] += re[S::D * i + c];
+                self.r_abs[S::D * n + c] += re[S::D * i + c].abs();
+            }
         }
         if let Some(ke) = ke {
-            for (s, v) in self.elem_slots[ie].iter().zip(ke.iter()) {
+            for (s, v) in self.elem_slots[ie].as_ref().iter().zip(ke.as_ref().iter()) {
                 if *s != NONE {
                     self.matrix.values[*s as usize] += v;
                 }
@@ -332,13 +325,13 @@ impl Assembler {
 
     fn elements_sequential(
         &mut self,
-        model: &Model,
+        model: &Model<S>,
         u: &[f64],
-        alphas: &mut [[f64; 4]],
+        alphas: &mut [S::Alpha],
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
-        let mut re = [0.0; 8];
-        let mut ke = [0.0; 64];
+        let mut re = S::Re::filled(0.0);
+        let mut ke = S::Ke::filled(0.0);
         for (ie, el) in model.elements.iter().enumerate() {
             let k = with_tangent.then_some(&mut ke);
             self.energy += element_kernel(model, el, &self.geometry[ie], u, &mut alphas[ie], &mut re, k)
@@ -357,9 +350,9 @@ impl Assembler {
     /// state dirty either way).
     fn elements_team(
         &mut self,
-        model: &Model,
+        model: &Model<S>,
         u: &[f64],
-        alphas: &mut [[f64; 4]],
+        alphas: &mut [S::Alpha],
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
         let Some(team) = self.team.take() else {
@@ -397,9 +390,9 @@ impl Assembler {
     /// say is faster now ([`pacing`]).
     fn elements(
         &mut self,
-        model: &Model,
+        model: &Model<S>,
         u: &[f64],
-        alphas: &mut [[f64; 4]],
+        alphas: &mut [S::Alpha],
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
         let mode = match self.team {
@@ -422,9 +415,9 @@ impl Assembler {
     /// Stops at the first failed element and reports it.
     fn scatter_outputs(
         &mut self,
-        model: &Model,
+        model: &Model<S>,
         first: usize,
-        out: &[ElementOut],
+        out: &[ElementOut<S>],
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
         for (k, o) in out.iter().enumerate() {
@@ -435,17 +428,18 @@ impl Assembler {
         Ok(())
     }
 
-    fn build_slots(&mut self, model: &Model) {
+    fn build_slots(&mut self, model: &Model<S>) {
         self.elem_slots = model
             .elements
             .iter()
             .map(|el| {
-                let e = element_eqs(&self.dofs, &el.nodes);
-                let mut s = [NONE; 64];
-                for i in 0..8 {
-                    for j in 0..8 {
+                let e = element_eqs::<S>(&self.dofs, &el.nodes);
+                let n = e.len();
+                let mut s = S::Slots::filled(NONE);
+                for i in 0..n {
+                    for j in 0..n {
                         if let (Some(r), Some(c)) = (e[i], e[j]) {
-                            s[8 * i + j] = self.matrix.index(r, c).expect("element pattern") as u32;
+                            s.as_mut()[n * i + j] = self.matrix.index(r, c).expect("element pattern") as u32;
                         }
                     }
                 }
@@ -455,13 +449,13 @@ impl Assembler {
     }
 
     /// Assemble the residual (and the tangent if `with_tangent`) at displacement `u`, time `t`.
-    /// `alphas` (enhanced-strain parameters per element) are updated in place.
+    /// `alphas` (enhanced-strain parameters, [`Dim::ALPHAS`] per element) are updated in place.
     pub fn assemble(
         &mut self,
-        model: &Model,
+        model: &Model<S>,
         u: &[f64],
         t: f64,
-        alphas: &mut [[f64; 4]],
+        alphas: &mut [f64],
         contact: &mut ContactSystem,
         with_tangent: bool,
     ) -> Result<(), AssemblyError> {
@@ -474,11 +468,15 @@ impl Assembler {
             self.r_forces.fill(0.0);
             self.matrix.clear_values();
             self.energy = 0.0;
-            self.elements(model, u, alphas, with_tangent)?;
+            self.elements(model, u, S::alphas_mut(alphas), with_tangent)?;
             self.missing.clear();
             let elements_done = Instant::now();
             self.timings.elements += elements_done - started;
-            let cfg = Config { model, u, t };
+            let cfg = Config {
+                model: model.plane(),
+                u,
+                t,
+            };
             let (r_full, r_abs, r_forces, matrix, missing, dofs) = (
                 &mut self.r_full,
                 &mut self.r_abs,
@@ -529,7 +527,7 @@ impl Assembler {
             self.r_abs[l.dof] += f.abs();
         }
         if !self.skew.is_empty() {
-            self.skew.update_gaps(model, u, t);
+            self.skew.update_gaps(model.plane(), u, t);
             if with_tangent {
                 self.skew.transform(&mut self.matrix);
             }
@@ -549,7 +547,7 @@ impl Assembler {
     /// Return the matrix to the elements' pattern when the entries contact added to it were
     /// not written since the last call (see [`SparseMatrix::shrink_unused_extension`]); called
     /// once per increment. Returns whether the pattern changed.
-    pub fn shrink_unused_contact_pattern(&mut self, model: &Model) -> bool {
+    pub fn shrink_unused_contact_pattern(&mut self, model: &Model<S>) -> bool {
         let changed = self.matrix.shrink_unused_extension(self.linear.banded());
         if changed {
             self.build_slots(model);
@@ -584,32 +582,31 @@ impl Assembler {
         }
     }
 
-    /// Hold the hourglass modes of the `q4-eas-safe` elements for the next increment, from
-    /// the converged displacements `u` (see [`crate::element::quad::hourglass_holds`]).
-    pub fn update_hourglass_holds(&mut self, model: &Model, u: &[f64]) {
+    /// Hold the hourglass modes of the `q4-eas-safe` (3D: `hex8-eas-safe`) elements for the
+    /// next increment, from the converged displacements `u` (see
+    /// [`crate::element::quad::hourglass_holds`], [`crate::element::hex8::hex8_hourglass_holds`]).
+    pub fn update_hourglass_holds(&mut self, model: &Model<S>, u: &[f64]) {
         for (el, geo) in model.elements.iter().zip(self.geometry.iter_mut()) {
             let body = &model.bodies[el.body];
             let Ok(geo) = geo else { continue };
-            if body.kind != crate::element::quad::ElementKind::Q4EasSafe {
+            if !S::holds_hourglass(&body.kind) {
                 continue;
             }
-            let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
-            let holds = crate::element::quad::hourglass_holds(geo, &body.material, &ue);
-            geo.set_alpha_penalty(holds, &body.material);
+            S::hold_hourglass(body, geo, &el.nodes, u);
         }
     }
 
-    /// The tangent of element `ie` at displacements `u` (row-major 8×8), from the enhanced
-    /// parameters `alpha` (a copy is iterated on; the state is not changed).
+    /// The tangent of element `ie` at displacements `u` (row-major, `8×8` in 2D), from the
+    /// enhanced parameters `alpha` (a copy is iterated on; the state is not changed).
     pub fn element_tangent(
         &self,
-        model: &Model,
+        model: &Model<S>,
         ie: usize,
         u: &[f64],
-        alpha: &[f64; 4],
-        k: &mut [f64; 64],
+        alpha: &S::Alpha,
+        k: &mut S::Ke,
     ) -> Result<(), AssemblyError> {
-        let (mut a, mut r) = (*alpha, [0.0; 8]);
+        let (mut a, mut r) = (*alpha, S::Re::filled(0.0));
         element_kernel(
             model,
             &model.elements[ie],
@@ -665,19 +662,19 @@ impl Assembler {
 
 /// One element's kernel on its nodes' displacements (the element's reference geometry, or
 /// why it has none, computed once by the assembler).
-fn element_kernel(
-    model: &Model,
-    el: &crate::model::Element,
-    geo: &Result<QuadGeometry, ElementError>,
+#[inline]
+fn element_kernel<S: Dim>(
+    model: &Model<S>,
+    el: &crate::model::Element<S>,
+    geo: &Result<S::Geometry, ElementError>,
     u: &[f64],
-    alpha: &mut [f64; 4],
-    re: &mut [f64; 8],
-    ke: Option<&mut [f64; 64]>,
+    alpha: &mut S::Alpha,
+    re: &mut S::Re,
+    ke: Option<&mut S::Ke>,
 ) -> Result<f64, ElementError> {
     let body = &model.bodies[el.body];
-    let ue: [[f64; 2]; 4] = el.nodes.map(|n| [u[2 * n], u[2 * n + 1]]);
     let geo = geo.as_ref().map_err(|e| *e)?;
-    quad_residual_tangent_with(body.kind, &body.material, geo, &ue, alpha, re, ke)
+    S::kernel(body, geo, &el.nodes, u, alpha, re, ke)
 }
 
 #[cfg(test)]

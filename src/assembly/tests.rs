@@ -4,7 +4,7 @@ use super::*;
 use crate::solver::state::TrialState;
 
 /// Assemble (with or without the tangent) from the same state, sequentially or not.
-fn assembled(model: &Model, threads: usize, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<[f64; 4]>) {
+fn assembled(model: &Model, threads: usize, with_tangent: bool) -> (Vec<f64>, Vec<f64>, f64, Vec<f64>) {
     let mut asm = Assembler::new(model);
     asm.set_threads(threads, model.elements.len());
     // every assembly on the team when there is one (the pacing measures nothing here)

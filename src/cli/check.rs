@@ -17,6 +17,25 @@ pub struct CheckArgs {
 pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
     let src = SceneSource::resolve(&a.scene)?;
     let scene = parse(&src, &a.sets)?;
+    if contrail::scene::build_solid::is_3d(&scene) {
+        let problem = contrail::scene::build_solid::build_solid(&src, &scene)?;
+        let m = &problem.model;
+        outln!(
+            "{}: ok — 3D, {} bodies, {} nodes, {} hexahedra, {} DOFs ({} prescribed), {} increments to t = {}",
+            src.origin,
+            m.bodies.len(),
+            m.nodes.len(),
+            m.elements.len(),
+            m.dof_count(),
+            m.prescribed.len(),
+            problem.settings.stepping.increments,
+            problem.settings.stepping.end
+        )?;
+        for b in &m.bodies {
+            outln!("  body {}: 3d, {}", b.name, b.kind.name())?;
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     let problem = build(&src, &scene)?;
     let m = &problem.model;
     let slaves: usize = m.contacts.iter().map(|c| c.slaves.len()).sum();

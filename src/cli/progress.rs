@@ -86,6 +86,7 @@ mod tests {
             }),
             monitors: vec![],
             reaction_total: [0.0; 2],
+            reaction_z: None,
             ..Default::default()
         };
         assert_eq!(

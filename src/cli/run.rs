@@ -154,7 +154,18 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
             return Err(BadInput(format!("--out {} is given twice", p.display())).into());
         }
     }
-    let (src, mut problem) = contrail::load_scene(&a.scene, &a.sets)?;
+    match contrail::load_any_scene(&a.scene, &a.sets)? {
+        (src, contrail::scene::AnyProblem::Plane(problem)) => run_problem(a, src, problem),
+        (src, contrail::scene::AnyProblem::Solid(problem)) => run_problem(a, src, problem),
+    }
+}
+
+/// Run a loaded problem of either dimension and print its summary.
+fn run_problem<S: contrail::model::Dim>(
+    a: RunArgs,
+    src: contrail::scene::SceneSource,
+    mut problem: contrail::problem::Problem<S>,
+) -> anyhow::Result<ExitCode> {
     if let Some(n) = a.threads {
         problem.settings.newton.threads = n as usize;
     }
@@ -185,7 +196,11 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
     let mcap = a.out.iter().find(|p| p.extension().is_some_and(|e| e == "mcap"));
     let mut o = String::new();
     row(&mut o, "scene", format!("{} ({})", model.name, src.origin));
-    row(&mut o, "transfer", info.transfer.join(", "));
+    let transfer = match info.transfer.is_empty() {
+        true => "none (no contact pairs)".to_string(),
+        false => info.transfer.join(", "),
+    };
+    row(&mut o, "transfer", transfer);
     ended_rows(&mut o, &result, &mut tracker);
     progress_lines(&mut o, &tracker);
     if let Ok(s) = &result {
@@ -209,7 +224,10 @@ pub fn run(a: RunArgs) -> anyhow::Result<ExitCode> {
 }
 
 /// The sinks the arguments ask for: `--out` files, rerun, the terminal's progress bar.
-fn sinks(a: &RunArgs, problem: &contrail::problem::Problem) -> anyhow::Result<Vec<Box<dyn Observer>>> {
+fn sinks<S: contrail::model::Dim>(
+    a: &RunArgs,
+    problem: &contrail::problem::Problem<S>,
+) -> anyhow::Result<Vec<Box<dyn Observer>>> {
     let mut sinks: Vec<Box<dyn Observer>> = Vec::new();
     for path in &a.out {
         sinks.push(sink(path, a)?);

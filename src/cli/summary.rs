@@ -4,7 +4,7 @@
 
 use contrail::contact::law::ContactState;
 use contrail::format::{count, plain};
-use contrail::model::Model;
+
 use contrail::record::{
     ContactPointRecord, IncrementRecord, IterationRecord, Observer, ObserverError, RunInfo, StepView,
 };
@@ -39,11 +39,17 @@ impl Tracker {
 }
 
 impl Observer for Tracker {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, model: contrail::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         self.end = info.settings.stepping.end;
-        self.models = (model.bodies.iter())
-            .map(|b| format!("{}: {}", b.name, b.kinematics.label()))
-            .collect();
+        self.models = match model {
+            contrail::model::ModelRef::Plane(m) => (m.bodies.iter())
+                .map(|b| format!("{}: {}", b.name, b.kinematics.label()))
+                .collect(),
+            contrail::model::ModelRef::Solid(m) => (m.bodies.iter())
+                .map(|b| format!("{}: 3d, {} elements", b.name, b.kind.name()))
+                .collect(),
+        };
+        let model = model.plane();
         self.slaves = model
             .contacts
             .iter()
@@ -63,6 +69,7 @@ impl Observer for Tracker {
         if let Some(c) = view.crossings.last() {
             let name = view
                 .model
+                .plane()
                 .contacts
                 .get(c.pair)
                 .map_or(String::new(), |p| p.name.clone());

@@ -74,6 +74,9 @@ pub enum ElementError {
     /// An axisymmetric element with a node at `x = r < 0` (the axis is `x = 0`).
     #[error("axisymmetric element with a node at radius r = {0:.3e} < 0")]
     NegativeRadius(f64),
+    /// A hexahedron's failure (3D models).
+    #[error(transparent)]
+    Hex8(#[from] super::hex8::Hex8Error),
 }
 
 /// The smallest `det F` of the compatible deformation over the Gauss points of an element

@@ -1,47 +1,50 @@
 //! What a scene becomes: nodes, elements, materials, constraints, rigid geometry and contact
 //! pairs, with everything resolved to indices. The model is immutable during a run.
 
+pub mod box_mesh;
 pub mod contact;
+pub mod dim;
 pub mod gmsh;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;
 
 use crate::element::material::Material;
-use crate::element::quad::{ElementKind, Kinematics};
 pub use contact::{
     ContactLaw, ContactPair, Enforcement, Master, OwnedVertex, Slave, Smoothing, TransferKind, SECOND_PASS_SUFFIX,
 };
+pub use dim::{AnyModel, Dim, ModelRef, Plane, Solid, SolidKind};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
 use std::collections::BTreeMap;
 
-/// One quadrilateral element.
+/// One element: a quadrilateral in 2D, a hexahedron in 3D (nodes in the kernel's order).
 #[derive(Debug, Clone)]
-pub struct Element {
-    pub nodes: [usize; 4],
+pub struct Element<S: Dim = Plane> {
+    pub nodes: S::Cell,
     pub body: usize,
 }
 
 /// A deformable body: its nodes are `first_node .. first_node + node_count`.
 #[derive(Debug, Clone)]
-pub struct Body {
+pub struct Body<S: Dim = Plane> {
     pub name: String,
     pub material: Material,
-    pub kind: ElementKind,
-    /// Plane strain, plane stress (with its thickness) or axisymmetric: the measure of every
-    /// force on the body (per unit thickness, for the plate, or the total over the full
-    /// circle; see [`crate::element::quad::Kinematics`]).
-    pub kinematics: Kinematics,
+    pub kind: S::Kind,
+    /// In 2D: plane strain, plane stress (with its thickness) or axisymmetric: the measure of
+    /// every force on the body (per unit thickness, for the plate, or the total over the full
+    /// circle; see [`crate::element::quad::Kinematics`]). Nothing in 3D.
+    pub kinematics: S::Kinematics,
     pub first_node: usize,
     pub node_count: usize,
     /// Named node sets (global node ids).
     pub node_sets: BTreeMap<String, Vec<usize>>,
-    /// Named boundary faces (global node ids), counter-clockwise around the body.
-    pub faces: BTreeMap<String, Vec<[usize; 2]>>,
+    /// Named boundary faces (global node ids): in 2D segments counter-clockwise around the
+    /// body, in 3D quadrilaterals counter-clockwise seen from outside (outward normal).
+    pub faces: BTreeMap<String, Vec<S::Face>>,
 }
 
-/// Prescribed value of one degree of freedom (`dof = 2 node + component`).
+/// Prescribed value of one degree of freedom (`dof = D node + component`).
 #[derive(Debug, Clone)]
 pub struct Prescribed {
     pub dof: usize,
@@ -88,14 +91,15 @@ pub struct Monitor {
     pub sign: f64,
 }
 
-/// The resolved model.
-#[derive(Debug, Clone, Default)]
-pub struct Model {
+/// The resolved model, in 2D ([`Plane`], the default) or 3D ([`Solid`]). Rigid bodies,
+/// contact pairs and skew supports are 2D only: empty in 3D.
+#[derive(Debug, Clone)]
+pub struct Model<S: Dim = Plane> {
     pub name: String,
     pub description: String,
-    pub nodes: Vec<[f64; 2]>,
-    pub elements: Vec<Element>,
-    pub bodies: Vec<Body>,
+    pub nodes: Vec<S::Point>,
+    pub elements: Vec<Element<S>>,
+    pub bodies: Vec<Body<S>>,
     pub prescribed: Vec<Prescribed>,
     /// Displacements prescribed along a direction (skew supports), at most one per node and
     /// on nodes without a [`Prescribed`] DOF.
@@ -112,16 +116,57 @@ pub struct Model {
     pub notes: Vec<String>,
 }
 
-impl Model {
+impl<S: Dim> Default for Model<S> {
+    fn default() -> Self {
+        Model {
+            name: String::new(),
+            description: String::new(),
+            nodes: Vec::new(),
+            elements: Vec::new(),
+            bodies: Vec::new(),
+            prescribed: Vec::new(),
+            skew: Vec::new(),
+            loads: Vec::new(),
+            rigid: Vec::new(),
+            contacts: Vec::new(),
+            monitors: Vec::new(),
+            notes: Vec::new(),
+        }
+    }
+}
+
+impl<S: Dim> Model<S> {
     /// The first monitor, if any.
     pub fn monitor(&self) -> Option<&Monitor> {
         self.monitors.first()
     }
 
+    /// `D` DOFs per node.
     pub fn dof_count(&self) -> usize {
-        2 * self.nodes.len()
+        S::D * self.nodes.len()
     }
 
+    /// The 2D view the contact layer works on ([`Dim::plane`]).
+    pub fn plane(&self) -> &Model<Plane> {
+        S::plane(self)
+    }
+
+    /// The model as observers take it.
+    pub fn view(&self) -> ModelRef<'_> {
+        S::model_ref(self)
+    }
+
+    /// `node N`, `rigid NAME` or `rigid NAME vertex K`.
+    pub fn slave_label(&self, s: Slave) -> String {
+        match s {
+            Slave::Node(n) => format!("node {n}"),
+            Slave::RigidPoint(r) => format!("rigid {}", self.rigid[r].name),
+            Slave::RigidVertex(r, v) => format!("rigid {} vertex {v}", self.rigid[r].name),
+        }
+    }
+}
+
+impl Model {
     /// The smallest element edge at each node (infinite at a node of no element).
     pub fn smallest_edge_at_nodes(&self) -> Vec<f64> {
         let mut h = vec![f64::INFINITY; self.nodes.len()];
@@ -152,15 +197,6 @@ impl Model {
             .flat_map(edges)
             .filter(|[a, b]| count[&[(*a).min(*b), (*a).max(*b)]] == 1)
             .collect()
-    }
-
-    /// `node N`, `rigid NAME` or `rigid NAME vertex K`.
-    pub fn slave_label(&self, s: Slave) -> String {
-        match s {
-            Slave::Node(n) => format!("node {n}"),
-            Slave::RigidPoint(r) => format!("rigid {}", self.rigid[r].name),
-            Slave::RigidVertex(r, v) => format!("rigid {} vertex {v}", self.rigid[r].name),
-        }
     }
 }
 

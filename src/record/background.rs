@@ -15,7 +15,7 @@ use super::{
     ObserverError, Outcome, RunInfo, StepView,
 };
 use crate::contact::law::ContactState;
-use crate::model::Model;
+use crate::model::{AnyModel, ModelRef};
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
@@ -33,10 +33,10 @@ const BATCH_RECORDS: usize = 64;
 const BATCH_BYTES: usize = 1 << 20;
 
 enum Message {
-    Start(Box<Model>, Box<RunInfo>),
+    Start(Box<AnyModel>, Box<RunInfo>),
     Iteration(IterationRecord),
     Increment {
-        rec: IncrementRecord,
+        rec: Box<IncrementRecord>,
         u: Vec<f64>,
         contact: Vec<Point>,
         crossings: Vec<CrossingRecord>,
@@ -198,7 +198,7 @@ fn write(
     rx: Receiver<Vec<Message>>,
     failure: Failure,
 ) -> Result<(), ObserverError> {
-    let mut model: Option<Box<Model>> = None;
+    let mut model: Option<Box<AnyModel>> = None;
     let mut labels = ContactLabels::default();
     let mut records: Vec<ContactPointRecord> = Vec::new();
     let mut failed = false;
@@ -208,8 +208,8 @@ fn write(
             // after an error the sink sees nothing but `finish`
             _ if failed => Ok(()),
             Message::Start(m, info) => {
-                let r = inner.start(&m, &info);
-                labels = ContactLabels::new(&m);
+                let r = inner.start(m.view(), &info);
+                labels = ContactLabels::new(m.view().plane());
                 model = Some(m);
                 r
             }
@@ -226,7 +226,7 @@ fn write(
                     inner.increment(
                         &rec,
                         &StepView {
-                            model,
+                            model: model.view(),
                             u: &u,
                             contact: &records,
                             crossings: &crossings,
@@ -248,8 +248,8 @@ fn write(
 }
 
 impl Observer for Background {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
-        self.send(Message::Start(Box::new(model.clone()), Box::new(info.clone())), 0)?;
+    fn start(&mut self, model: ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
+        self.send(Message::Start(Box::new(model.to_owned()), Box::new(info.clone())), 0)?;
         self.flush()
     }
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {
@@ -260,7 +260,7 @@ impl Observer for Background {
             + std::mem::size_of::<Point>() * view.contact.len()
             + std::mem::size_of_val(view.crossings);
         let m = Message::Increment {
-            rec: rec.clone(),
+            rec: Box::new(rec.clone()),
             u: view.u.to_vec(),
             contact: view.contact.iter().map(Point::of).collect(),
             crossings: view.crossings.to_vec(),

@@ -4,7 +4,7 @@
 
 use super::real::{Real, Real2, Real2s};
 use super::{ContactPointRecord, CrossingRecord};
-use crate::model::{Master, Model, RigidShape};
+use crate::model::{Master, Model, ModelRef, RigidShape, Solid};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -28,6 +28,16 @@ pub struct BodyInfo {
     /// The plate's thickness of a `plane-stress` body (absent otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thickness: Option<f64>,
+    /// Named boundary faces of a 3D body as quadrilaterals (absent in 2D).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub quad_faces: Vec<QuadFaceInfo>,
+}
+
+/// A named boundary face of a 3D body: quadrilaterals, counter-clockwise seen from outside.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct QuadFaceInfo {
+    pub name: String,
+    pub quads: Vec<[usize; 4]>,
 }
 
 fn plane_strain() -> String {
@@ -96,9 +106,76 @@ pub struct ModelRecord {
     /// Final pseudo-time of the stepping.
     #[serde(with = "Real")]
     pub end: f64,
+    /// The spatial dimension: 3 for a model of hexahedra (then `nodes` and `elements` are
+    /// empty, the mesh is `nodes_3d` and `hexahedra`, `element_body` is per hexahedron, and
+    /// the faces are quadrilaterals); absent for a 2D model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dim: Option<usize>,
+    /// Reference coordinates of the nodes of a 3D model (x, y, z).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nodes_3d: Vec<[f64; 3]>,
+    /// Hexahedra of a 3D model: eight node ids in Gmsh/VTK order (`VTK_HEXAHEDRON`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hexahedra: Vec<[usize; 8]>,
 }
 
 impl ModelRecord {
+    /// The record of a model of either dimension ([`Self::new`], [`Self::solid`]).
+    pub fn of(model: ModelRef<'_>, end: f64) -> Self {
+        match model {
+            ModelRef::Plane(m) => Self::new(m, end),
+            ModelRef::Solid(m) => Self::solid(m, end),
+        }
+    }
+
+    /// The record of a 3D model: its nodes, hexahedra and bodies (faces as quadrilaterals,
+    /// `element` the hexahedron's name, `model = "3d"`); no rigid bodies or contact pairs.
+    pub fn solid(model: &Model<Solid>, end: f64) -> Self {
+        let bodies = (model.bodies.iter())
+            .map(|b| BodyInfo {
+                name: b.name.clone(),
+                element: b.kind.name().into(),
+                first_node: b.first_node,
+                node_count: b.node_count,
+                faces: Vec::new(),
+                model: "3d".into(),
+                thickness: None,
+                quad_faces: (b.faces.iter())
+                    .map(|(name, quads)| QuadFaceInfo {
+                        name: name.clone(),
+                        quads: quads.clone(),
+                    })
+                    .collect(),
+            })
+            .collect();
+        ModelRecord {
+            name: model.name.clone(),
+            description: model.description.clone(),
+            nodes: Vec::new(),
+            elements: Vec::new(),
+            element_body: model.elements.iter().map(|e| e.body).collect(),
+            bodies,
+            rigid: Vec::new(),
+            contacts: Vec::new(),
+            monitor: model.monitor().map(|m| m.label.clone()),
+            monitors: model.monitors.iter().map(|m| m.label.clone()).collect(),
+            end,
+            dim: Some(3),
+            nodes_3d: model.nodes.clone(),
+            hexahedra: model.elements.iter().map(|e| e.nodes).collect(),
+        }
+    }
+
+    /// The spatial dimension (2 unless the record says 3).
+    pub fn dim(&self) -> usize {
+        self.dim.unwrap_or(2)
+    }
+
+    /// Nodes of the model in either dimension.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len().max(self.nodes_3d.len())
+    }
+
     /// The record of `model`, run to the pseudo-time `end`.
     pub fn new(model: &Model, end: f64) -> Self {
         let bodies = model
@@ -125,6 +202,7 @@ impl ModelRecord {
                     crate::element::quad::Kinematics::PlaneStress { thickness } => Some(thickness),
                     _ => None,
                 },
+                quad_faces: Vec::new(),
             })
             .collect();
         let rigid = model
@@ -175,6 +253,9 @@ impl ModelRecord {
             monitor: model.monitor().map(|m| m.label.clone()),
             monitors: model.monitors.iter().map(|m| m.label.clone()).collect(),
             end,
+            dim: None,
+            nodes_3d: Vec::new(),
+            hexahedra: Vec::new(),
         }
     }
 
@@ -264,6 +345,9 @@ pub struct PositionsMessage {
     #[schemars(with = "Vec<Real2>")]
     #[serde(with = "Real2s")]
     pub rigid_offsets: Vec<[f64; 2]>,
+    /// Current coordinates `X + u` of every node of a 3D model (then `nodes` is empty).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nodes_3d: Vec<[f64; 3]>,
 }
 
 mod real_polylines {
@@ -314,15 +398,24 @@ pub struct PackedPositions {
     #[schemars(with = "Vec<Real2>")]
     #[serde(with = "Real2s")]
     pub rigid_offsets: Vec<[f64; 2]>,
+    /// Values per node in `nodes`: 3 for a 3D model (x₀ y₀ z₀ x₁ …; reshape to `(-1, 3)`);
+    /// absent for 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dim: Option<usize>,
 }
 
 const HEX: &[u8; 16] = b"0123456789abcdef";
 
 /// Append the shuffled hexadecimal text of the coordinates `nodes` (see [`PackedPositions`]).
 pub fn pack_nodes(out: &mut Vec<u8>, nodes: &[[f64; 2]]) {
-    out.reserve(32 * nodes.len());
+    pack_values(out, nodes.as_flattened());
+}
+
+/// Append the shuffled hexadecimal text of the values `values` (see [`PackedPositions`]).
+pub fn pack_values(out: &mut Vec<u8>, values: &[f64]) {
+    out.reserve(16 * values.len());
     for k in 0..8 {
-        for v in nodes.iter().flatten() {
+        for v in values {
             let b = (v.to_bits() >> (8 * k)) as u8;
             out.push(HEX[(b >> 4) as usize]);
             out.push(HEX[(b & 15) as usize]);
@@ -334,12 +427,17 @@ impl PackedPositions {
     /// `p` packed.
     pub fn pack(p: &PositionsMessage) -> Self {
         let mut text = Vec::new();
-        pack_nodes(&mut text, &p.nodes);
+        let dim = (!p.nodes_3d.is_empty()).then_some(3);
+        match dim {
+            Some(_) => pack_values(&mut text, p.nodes_3d.as_flattened()),
+            None => pack_nodes(&mut text, &p.nodes),
+        }
         PackedPositions {
             increment: p.increment,
             t: p.t,
             nodes: String::from_utf8(text).unwrap_or_default(),
             rigid_offsets: p.rigid_offsets.clone(),
+            dim,
         }
     }
 
@@ -352,10 +450,16 @@ impl PackedPositions {
         out.extend_from_slice(b",\"t\":");
         serde_json::to_writer(&mut *out, &Item(p.t))?;
         out.extend_from_slice(b",\"nodes\":\"");
-        pack_nodes(out, &p.nodes);
+        match p.nodes_3d.is_empty() {
+            true => pack_nodes(out, &p.nodes),
+            false => pack_values(out, p.nodes_3d.as_flattened()),
+        }
         out.extend_from_slice(b"\",\"rigid_offsets\":");
         let mut ser = serde_json::Serializer::new(&mut *out);
         Real2s::serialize(&p.rigid_offsets, &mut ser)?;
+        if !p.nodes_3d.is_empty() {
+            out.extend_from_slice(b",\"dim\":3");
+        }
         out.push(b'}');
         Ok(())
     }
@@ -364,10 +468,15 @@ impl PackedPositions {
     pub fn unpack(&self) -> Result<PositionsMessage, String> {
         let err = |what: &str| format!("positions of increment {}: {what}", self.increment);
         let text = self.nodes.as_bytes();
-        if !text.len().is_multiple_of(32) {
+        let dim = self.dim.unwrap_or(2);
+        if dim != 2 && dim != 3 {
+            return Err(err(&format!("dimension {dim}: neither 2 nor 3")));
+        }
+        if !text.len().is_multiple_of(16 * dim) {
             return Err(err(&format!(
-                "{} hexadecimal digits, not a whole number of nodes (32 each)",
-                text.len()
+                "{} hexadecimal digits, not a whole number of nodes ({} each)",
+                text.len(),
+                16 * dim
             )));
         }
         let digit = |c: u8| match c {
@@ -381,19 +490,38 @@ impl PackedPositions {
             let b = (digit(pair[0])? << 4) | digit(pair[1])?;
             bits[i % n] |= (b as u64) << (8 * (i / n));
         }
+        let values = bits.iter().map(|b| f64::from_bits(*b));
+        let (nodes, nodes_3d) = match dim {
+            3 => (Vec::new(), values.collect::<Vec<f64>>().as_chunks::<3>().0.to_vec()),
+            _ => (values.collect::<Vec<f64>>().as_chunks::<2>().0.to_vec(), Vec::new()),
+        };
         Ok(PositionsMessage {
             increment: self.increment,
             t: self.t,
-            nodes: bits
-                .chunks_exact(2)
-                .map(|v| [f64::from_bits(v[0]), f64::from_bits(v[1])])
-                .collect(),
+            nodes,
             rigid_offsets: self.rigid_offsets.clone(),
+            nodes_3d,
         })
     }
 }
 
 impl PositionsMessage {
+    /// The positions of a model of either dimension (3D: `nodes_3d`, `nodes` empty).
+    pub fn of(increment: usize, t: f64, model: ModelRef<'_>, u: &[f64]) -> Self {
+        match model {
+            ModelRef::Plane(m) => Self::new(increment, t, m, u),
+            ModelRef::Solid(m) => PositionsMessage {
+                increment,
+                t,
+                nodes: Vec::new(),
+                rigid_offsets: Vec::new(),
+                nodes_3d: (m.nodes.iter().enumerate())
+                    .map(|(i, x)| std::array::from_fn(|c| x[c] + u[3 * i + c]))
+                    .collect(),
+            },
+        }
+    }
+
     pub fn new(increment: usize, t: f64, model: &Model, u: &[f64]) -> Self {
         PositionsMessage {
             increment,
@@ -405,6 +533,7 @@ impl PositionsMessage {
                 .map(|(i, x)| [x[0] + u[2 * i], x[1] + u[2 * i + 1]])
                 .collect(),
             rigid_offsets: model.rigid.iter().map(|r| r.offset(t)).collect(),
+            nodes_3d: Vec::new(),
         }
     }
 }
@@ -420,6 +549,7 @@ mod tests {
             t: 0.5,
             nodes: vec![[1.0 / 3.0, -0.0], [f64::NAN, f64::INFINITY], [5e-324, -1e308]],
             rigid_offsets: vec![[0.0, -0.25]],
+            nodes_3d: Vec::new(),
         };
         let text = serde_json::to_string(&PackedPositions::pack(&p)).unwrap();
         let mut direct = Vec::new();

@@ -116,6 +116,10 @@ pub struct IncrementRecord {
     /// Sum of all reaction forces (x, y).
     #[serde(with = "Real2")]
     pub reaction_total: [f64; 2],
+    /// The z component of the sum of the reactions (3D models only).
+    #[serde(default, skip_serializing_if = "Option::is_none", with = "real_option")]
+    #[schemars(with = "Option<Real>")]
+    pub reaction_z: Option<f64>,
     /// Which convergence test accepted the increment: `residual` (‖R‖ ≤ tol · F_ref and the
     /// energy test), `round-off` (‖R‖ at the assembled residual's round-off floor) or
     /// `start` (the first iterate met the residual test); empty in older recordings.
@@ -398,9 +402,27 @@ pub enum Outcome {
 
 /// What an observer sees at the end of a converged increment.
 pub struct StepView<'a> {
-    pub model: &'a crate::model::Model,
-    /// Full displacement vector (2 per node).
+    /// The model, of either dimension (2D sinks draw [`crate::model::ModelRef::plane`]).
+    pub model: crate::model::ModelRef<'a>,
+    /// Full displacement vector (`D` per node).
     pub u: &'a [f64],
     pub contact: &'a [ContactPointRecord],
     pub crossings: &'a [CrossingRecord],
+}
+
+/// An optional [`Real`] (absent when `None`).
+mod real_option {
+    use super::real::Real;
+    use serde::{Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+        match x {
+            Some(v) => Real::serialize(v, s),
+            None => s.serialize_none(),
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        Real::deserialize(d).map(Some)
+    }
 }

@@ -1,7 +1,7 @@
 //! The sink trait the solver reports to.
 
 use super::{IncrementRecord, IterationRecord, LogRecord, Outcome, RunInfo, StepView};
-use crate::model::Model;
+use crate::model::ModelRef;
 
 /// Error raised by an observer (an I/O failure of a sink); it stops the run.
 #[derive(Debug, thiserror::Error)]
@@ -25,7 +25,7 @@ impl ObserverError {
 /// only what it keeps. `finish` is called exactly once, also after a failure or an
 /// interruption, so a sink can always leave a complete file behind.
 pub trait Observer {
-    fn start(&mut self, _model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, _model: ModelRef<'_>, _info: &RunInfo) -> Result<(), ObserverError> {
         Ok(())
     }
     fn iteration(&mut self, _rec: &IterationRecord) -> Result<(), ObserverError> {
@@ -64,7 +64,7 @@ macro_rules! fan {
 }
 
 impl Observer for Fanout<'_> {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, model: ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         fan!(self, start, model, info)
     }
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {

@@ -8,8 +8,8 @@ use super::{locate, SceneError, SceneSource};
 use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
-    chain_neighbours, Body, ContactPair, Element, Enforcement, Master, Model, Monitor, MonitorTarget, NodalLoad, Piece,
-    Prescribed, Ramp, RigidBody, RigidShape, SkewPrescribed, Slave, Smoothing,
+    chain_neighbours, Body, ContactPair, Dim, Element, Enforcement, Master, Model, Monitor, MonitorTarget, NodalLoad,
+    Piece, Prescribed, Ramp, RigidBody, RigidShape, SkewPrescribed, Slave, Smoothing,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -20,7 +20,15 @@ pub(super) struct Ctx<'a> {
     mesh_files: Vec<Option<MeshFile>>,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    /// The context of a scene whose bodies have no mesh files (generated meshes only).
+    pub(super) fn new(src: &'a SceneSource) -> Self {
+        Ctx {
+            src,
+            mesh_files: Vec::new(),
+        }
+    }
+
     pub(super) fn err(&self, near: &str, message: String, hint: &str) -> SceneError {
         SceneError::Invalid {
             origin: self.src.origin.clone(),
@@ -44,15 +52,34 @@ fn comp(c: Component) -> usize {
     match c {
         Component::X => 0,
         Component::Y => 1,
+        Component::Z => 2,
     }
 }
 
-fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<Vec<usize>, SceneError> {
+/// The component index of `c` in a model of dimension `S` (`z` refused in 2D).
+pub(super) fn comp_of<S: Dim>(cx: &Ctx, c: Component, near: &str) -> Result<usize, SceneError> {
+    let k = comp(c);
+    if k >= S::D {
+        return Err(cx.err(
+            near,
+            format!("component {c:?} in a {} model", S::NAME),
+            "a 2D model has the components x and y; z needs a 3D body (a `box` mesh)",
+        ));
+    }
+    Ok(k)
+}
+
+pub(super) fn select<S: Dim>(
+    cx: &Ctx,
+    model: &Model<S>,
+    body: usize,
+    sel: &NodeSelection,
+) -> Result<Vec<usize>, SceneError> {
     let b = &model.bodies[body];
     let nodes = match sel {
         NodeSelection::Named(name) => b.node_sets.get(name).cloned().ok_or_else(|| {
             let known: Vec<&str> = b.node_sets.keys().map(|s| s.as_str()).collect();
-            match &cx.mesh_files[body] {
+            match cx.mesh_files.get(body).and_then(Option::as_ref) {
                 Some((file, _)) => cx.err(
                     name,
                     format!("body `{}`: the mesh {file} has no physical group `{name}`", b.name),
@@ -70,9 +97,10 @@ fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<V
         })?,
         NodeSelection::Where(w) => (b.first_node..b.first_node + b.node_count)
             .filter(|&n| {
-                let p = model.nodes[n];
+                let p = model.nodes[n].as_ref();
                 w.x.is_none_or(|x| (p[0] - x).abs() <= w.tol)
                     && w.y.is_none_or(|y| (p[1] - y).abs() <= w.tol)
+                    && w.z.is_none_or(|z| p.get(2).is_some_and(|pz| (pz - z).abs() <= w.tol))
                     && w.bbox.is_none_or(|bb| {
                         p[0] >= bb[0][0] - w.tol
                             && p[0] <= bb[1][0] + w.tol
@@ -92,7 +120,7 @@ fn select(cx: &Ctx, model: &Model, body: usize, sel: &NodeSelection) -> Result<V
     Ok(nodes)
 }
 
-pub(super) fn body_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
+pub(super) fn body_index<S: Dim>(cx: &Ctx, model: &Model<S>, name: &str) -> Result<usize, SceneError> {
     model.bodies.iter().position(|b| b.name == name).ok_or_else(|| {
         let known: Vec<&str> = model.bodies.iter().map(|b| b.name.as_str()).collect();
         cx.err(
@@ -103,7 +131,7 @@ pub(super) fn body_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, S
     })
 }
 
-fn rigid_index(cx: &Ctx, model: &Model, name: &str) -> Result<usize, SceneError> {
+fn rigid_index<S: Dim>(cx: &Ctx, model: &Model<S>, name: &str) -> Result<usize, SceneError> {
     model.rigid.iter().position(|b| b.name == name).ok_or_else(|| {
         let known: Vec<&str> = model.rigid.iter().map(|b| b.name.as_str()).collect();
         cx.err(
@@ -232,6 +260,14 @@ fn sharp_shape(cx: &Ctx, r: &RigidSpec) -> Result<RigidShape, SceneError> {
 
 /// Build the problem of a scene: its model and its solver settings.
 pub fn build(src: &SceneSource, s: &SceneFile) -> Result<Problem, SceneError> {
+    if super::build_solid::is_3d(s) {
+        return Err(SceneError::Invalid {
+            origin: src.origin.clone(),
+            location: String::new(),
+            message: format!("scene `{}` has 3D bodies (a `box` mesh)", s.name),
+            hint: "3D scenes are run by `contrail run` and `contrail check`; sweeps, the service and the 2D tools take 2D scenes only for now".into(),
+        });
+    }
     Ok(Problem {
         model: build_model(src, s)?,
         settings: SolverSettings {
@@ -276,6 +312,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
     steps::add_fixes(&cx, s, &mut m, end)?;
     super::body_model::fix_axis(&cx, &mut m, end)?;
     steps::add_loads(&cx, s, &mut m, end)?;
+    steps::add_body_loads(&cx, s, &mut m, end)?;
     super::pressure::add_pressures(&cx, s, &mut m, end)?;
     steps::add_rigid(&cx, s, &mut m, end)?;
     steps::add_contacts(&cx, s, &mut m)?;
@@ -287,7 +324,23 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
 }
 
 #[path = "build_steps.rs"]
-mod steps;
+pub(super) mod steps;
+
+/// A built scene of either dimension.
+#[derive(Debug, Clone)]
+pub enum AnyProblem {
+    Plane(Problem),
+    Solid(Problem<crate::model::Solid>),
+}
+
+/// Build a scene of either dimension: 3D when one of its bodies has a 3D mesh
+/// ([`super::build_solid::build_solid`]), else 2D ([`build`]).
+pub fn build_any(src: &SceneSource, s: &SceneFile) -> Result<AnyProblem, SceneError> {
+    match super::build_solid::is_3d(s) {
+        true => super::build_solid::build_solid(src, s).map(AnyProblem::Solid),
+        false => build(src, s).map(AnyProblem::Plane),
+    }
+}
 
 /// A vertex of a filleted outline is an arc now: it cannot be a slave point.
 fn refuse_rounded_vertex(cx: &Ctx, s: &SceneFile, c: &ContactSpec) -> Result<(), SceneError> {

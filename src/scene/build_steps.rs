@@ -80,7 +80,12 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
 /// The prescribed displacements (`[[fix]]`): global components, or a skew support along a
 /// `direction` (made unit). A component prescribed twice is refused, and so is a node with a
 /// skew support and any other fix (its two DOFs are turned into the support's frame).
-pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
+pub(in crate::scene) fn add_fixes<S: Dim>(
+    cx: &Ctx,
+    s: &SceneFile,
+    m: &mut Model<S>,
+    end: f64,
+) -> Result<(), SceneError> {
     let mut fixed = vec![false; m.dof_count()];
     let mut skew = vec![false; m.nodes.len()];
     let label = |i: usize, f: &FixSpec| f.name.clone().map_or(format!("[[fix]] {i}"), |n| format!("fix `{n}`"));
@@ -98,6 +103,13 @@ pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Res
                 return Err(twice("already has a skew support"));
             }
             if let Some(d) = f.direction {
+                if S::D != 2 {
+                    return Err(cx.err(
+                        f.name.as_deref().unwrap_or(&f.body),
+                        format!("{}: a skew support (`direction`) in a 3D model", label(i, f)),
+                        "skew supports are 2D only for now: fix global components instead",
+                    ));
+                }
                 if fixed[2 * n] || fixed[2 * n + 1] {
                     return Err(twice("already has a prescribed component"));
                 }
@@ -111,7 +123,7 @@ pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Res
                 continue;
             }
             for &c in &f.components {
-                let dof = 2 * n + comp(c);
+                let dof = S::D * n + comp_of::<S>(cx, c, &f.body)?;
                 if fixed[dof] {
                     return Err(twice(&format!("component {c:?} is prescribed twice")));
                 }
@@ -128,7 +140,12 @@ pub(super) fn add_fixes(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Res
 
 /// The nodal loads (`[[load]]`: a total shared equally by the selected nodes) and the body
 /// loads.
-pub(super) fn add_loads(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
+pub(in crate::scene) fn add_loads<S: Dim>(
+    cx: &Ctx,
+    s: &SceneFile,
+    m: &mut Model<S>,
+    end: f64,
+) -> Result<(), SceneError> {
     for l in &s.loads {
         let bi = body_index(cx, m, &l.body)?;
         let nodes = select(cx, m, bi, &l.nodes)?;
@@ -137,11 +154,16 @@ pub(super) fn add_loads(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Res
         r.knots.iter_mut().for_each(|k| k.1 *= share);
         for n in nodes {
             m.loads.push(NodalLoad {
-                dof: 2 * n + comp(l.component),
+                dof: S::D * n + comp_of::<S>(cx, l.component, &l.body)?,
                 ramp: r.clone(),
             });
         }
     }
+    Ok(())
+}
+
+/// The body loads (2D).
+pub(super) fn add_body_loads(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
     for bl in &s.body_loads {
         body_load(cx, m, bl, end)?;
     }
@@ -199,7 +221,7 @@ pub(super) fn add_contacts(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(),
 
 /// The monitors: a rigid body's travel and force, or a node set's mean displacement and
 /// summed reaction.
-pub(super) fn add_monitors(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(), SceneError> {
+pub(in crate::scene) fn add_monitors<S: Dim>(cx: &Ctx, s: &SceneFile, m: &mut Model<S>) -> Result<(), SceneError> {
     for mon in s.monitors.iter() {
         let target = match (&mon.rigid, &mon.body, &mon.nodes) {
             (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(cx, m, r)?),
@@ -221,7 +243,7 @@ pub(super) fn add_monitors(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(),
         m.monitors.push(Monitor {
             label: mon.label.clone(),
             target,
-            component: comp(mon.component),
+            component: comp_of::<S>(cx, mon.component, &mon.label)?,
             sign: mon.sign,
         });
     }

@@ -55,6 +55,10 @@ pub const BUILTINS: &[Builtin] = &[
         name: "capstan-polygon",
         text: include_str!("../../scenes/capstan-polygon.toml"),
     },
+    Builtin {
+        name: "cantilever-3d",
+        text: include_str!("../../scenes/cantilever-3d.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.

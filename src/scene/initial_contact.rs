@@ -148,7 +148,11 @@ mod tests {
 
     #[test]
     fn the_built_in_scenes_start_without_overlaps() {
-        for b in crate::scene::builtin::BUILTINS {
+        // the 3D scenes have no contact
+        for b in crate::scene::builtin::BUILTINS
+            .iter()
+            .filter(|b| !b.name.ends_with("-3d"))
+        {
             let m = crate::load_scene(b.name, &[]).unwrap().1.model;
             assert!(initial_overlaps(&m, &[]).is_empty(), "{}", b.name);
         }

@@ -176,6 +176,12 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             }
         }
         MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
+        MeshSpec::Box { .. } => {
+            return Err(invalid(
+                format!("body `{}`: a `box` mesh makes a 3D body", b.name),
+                "a scene is 2D or 3D in all its bodies",
+            ))
+        }
     };
     if let Some(x) = mesh.nodes.iter().find(|x| !(x[0].is_finite() && x[1].is_finite())) {
         return Err(invalid(

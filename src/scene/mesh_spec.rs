@@ -52,6 +52,20 @@ pub enum MeshSpec {
         /// With `bias = "centre"`: `[angle_deg, radius]` to refine towards.
         focus: Option<[f64; 2]>,
     },
+    /// Structured hexahedral mesh of the box `origin .. origin + size`: the body is 3D
+    /// (hexahedra). Node sets and faces `xmin`, `xmax`, `ymin`, `ymax`, `zmin`, `zmax` (and
+    /// the set `all`). A 3D scene takes no rigid bodies, contact pairs, pressures or body
+    /// loads yet.
+    Box {
+        origin: [f64; 3],
+        size: [f64; 3],
+        /// Elements along x, y and z.
+        elements: [usize; 3],
+        /// Grading ratio along x, y and z: the last element over the first (default 1 =
+        /// uniform).
+        #[serde(default = "unit_grading3")]
+        grading: [f64; 3],
+    },
     /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
     /// are the body's node sets, its physical curves on the boundary its faces.
     Gmsh {
@@ -63,6 +77,17 @@ pub enum MeshSpec {
 
 pub(super) fn unit_grading() -> [f64; 2] {
     [1.0, 1.0]
+}
+
+pub(super) fn unit_grading3() -> [f64; 3] {
+    [1.0, 1.0, 1.0]
+}
+
+impl MeshSpec {
+    /// Whether the mesh makes a 3D body.
+    pub fn is_3d(&self) -> bool {
+        matches!(self, MeshSpec::Box { .. })
+    }
 }
 
 /// Where the elements of one axis of a structured mesh are refined.

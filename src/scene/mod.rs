@@ -6,6 +6,7 @@
 mod body_model;
 mod build;
 pub mod build_pairs;
+pub mod build_solid;
 pub mod builtin;
 pub mod fillet;
 pub mod initial_contact;
@@ -18,7 +19,7 @@ pub mod pressure;
 pub mod types;
 pub mod validate;
 
-pub use build::{build, build_model};
+pub use build::{build, build_any, build_model, AnyProblem};
 pub use overrides::apply_override;
 pub use types::SceneFile;
 

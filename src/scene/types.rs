@@ -125,6 +125,8 @@ pub struct WhereSpec {
     pub x: Option<f64>,
     /// Nodes with this y (within `tol`).
     pub y: Option<f64>,
+    /// Nodes with this z (within `tol`; 3D models only).
+    pub z: Option<f64>,
     /// Nodes inside `[[x0, y0], [x1, y1]]`.
     #[serde(rename = "box")]
     pub bbox: Option<[[f64; 2]; 2]>,
@@ -149,6 +151,9 @@ impl std::fmt::Display for NodeSelection {
                 if let Some(y) = w.y {
                     parts.push(format!("y = {y}"));
                 }
+                if let Some(z) = w.z {
+                    parts.push(format!("z = {z}"));
+                }
                 if let Some([[x0, y0], [x1, y1]]) = w.bbox {
                     parts.push(format!("box = [[{x0}, {y0}], [{x1}, {y1}]]"));
                 }
@@ -172,6 +177,8 @@ pub enum RampSpec {
 pub enum Component {
     X,
     Y,
+    /// 3D models only.
+    Z,
 }
 
 /// Prescribed displacement of a node set: of some global components (`components`), or

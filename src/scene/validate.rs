@@ -181,7 +181,7 @@ impl Check<'_> {
 
     fn selection(&self, path: &[P], key: &str, s: &NodeSelection) -> R {
         if let NodeSelection::Where(w) = s {
-            for (k, v) in [("x", w.x), ("y", w.y)] {
+            for (k, v) in [("x", w.x), ("y", w.y), ("z", w.z)] {
                 if let Some(v) = v {
                     self.finite(&sub(path, k), &format!("{key}.{k}"), v)?;
                 }
@@ -347,6 +347,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
                 2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
             }
+            MeshSpec::Box { elements, .. } => 3.0 * elements.iter().map(|&n| n as f64 + 1.0).product::<f64>(),
             MeshSpec::Gmsh { .. } => 0.0,
         })
         .sum();
@@ -355,6 +356,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
                 elements[0] as f64 * elements[1] as f64
             }
+            MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
             MeshSpec::Gmsh { .. } => 0.0,
         };
         n(a.1).total_cmp(&n(b.1))
@@ -369,6 +371,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
         MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
             format!("[{}, {}]", elements[0], elements[1])
         }
+        MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
         MeshSpec::Gmsh { file, .. } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {

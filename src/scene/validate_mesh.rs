@@ -47,6 +47,12 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
         }
         // checked when the file is read (`model::gmsh`): its size is not known here
         MeshSpec::Gmsh { .. } => Ok(f64::INFINITY),
+        MeshSpec::Box {
+            origin,
+            size,
+            elements,
+            grading,
+        } => box_mesh(c, mesh, key, (origin, size, elements, grading), ext),
         MeshSpec::Annulus {
             centre,
             radius,
@@ -198,4 +204,43 @@ fn annulus(
     ext.add(centre[0].abs().max(centre[1].abs()) + radius[1]);
     let around = radius[0] * sweep.to_radians() / elements[0] as f64;
     Ok(around.min((radius[1] - radius[0]) / elements[1] as f64))
+}
+
+/// Checks a `box` mesh: a finite origin, positive sizes, at least one element per axis,
+/// positive grading; returns the smallest element edge.
+fn box_mesh(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (origin, size, elements, grading): (&[f64; 3], &[f64; 3], &[usize; 3], &[f64; 3]),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    let mut h = f64::INFINITY;
+    for k in 0..3 {
+        c.finite(&sub(mesh, "origin"), &format!("{key}.mesh.origin[{k}]"), origin[k])?;
+        c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), size[k])?;
+        c.positive(&sub(mesh, "grading"), &format!("{key}.mesh.grading[{k}]"), grading[k])?;
+        if elements[k] == 0 {
+            return Err(c.fail(
+                &sub(mesh, "elements"),
+                &format!("{key}.mesh.elements[{k}]"),
+                0,
+                "must be ≥ 1",
+                "give at least one element along each axis",
+            ));
+        }
+        let xs = crate::model::mesh::graded_coords(size[k], elements[k], grading[k]);
+        h = xs.windows(2).map(|w| w[1] - w[0]).fold(h, f64::min);
+        ext.add(origin[k].abs().max((origin[k] + size[k]).abs()));
+    }
+    if !ext.0.is_finite() || ext.0 > MAX_COORDINATE {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("a corner {:e} from the origin", ext.0),
+            &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
+            "give a smaller mesh (or change the unit of length)",
+        ));
+    }
+    Ok(h)
 }

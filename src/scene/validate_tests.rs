@@ -7,7 +7,7 @@ fn outcome(scene: &str, sets: &[&str]) -> String {
     let src = SceneSource::resolve(scene).unwrap();
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     match parse(&src, &sets) {
-        Ok(s) => build_model(&src, &s).map_or_else(|e| e.to_string(), |_| "ok".into()),
+        Ok(s) => crate::scene::build_any(&src, &s).map_or_else(|e| e.to_string(), |_| "ok".into()),
         Err(e) => e.to_string(),
     }
 }

@@ -16,10 +16,10 @@ use crate::settings::NewtonSettings;
 /// iteration records of the repeated solves continue the numbering of the first; the
 /// returned [`Converged`] sums the iterations and joins the residual histories
 /// (`augmentations`: the number of updates made).
-pub fn solve_augmented(
-    model: &Model,
+pub fn solve_augmented<S: crate::model::Dim>(
+    model: &Model<S>,
     settings: &NewtonSettings,
-    asm: &mut Assembler,
+    asm: &mut Assembler<S>,
     state: &mut TrialState,
     target: IncrementTarget,
     record: &mut dyn FnMut(IterationRecord) -> bool,
@@ -31,7 +31,7 @@ pub fn solve_augmented(
         return Ok(conv);
     }
     loop {
-        let changes = state.contact.augment(model, false);
+        let changes = state.contact.augment(model.plane(), false);
         let open: Vec<_> = changes.iter().filter(|c| !c.converged()).collect();
         if open.is_empty() {
             return Ok(conv);
@@ -44,7 +44,7 @@ pub fn solve_augmented(
                 tol: c.tol,
             });
         }
-        state.contact.augment(model, true);
+        state.contact.augment(model.plane(), true);
         conv.augmentations += 1;
         let offset = conv.iterations;
         let mut renumbered = |mut r: IterationRecord| {

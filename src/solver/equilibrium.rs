@@ -30,7 +30,7 @@
 use crate::assembly::Assembler;
 use crate::contact::events::PointSnapshot;
 use crate::contact::law::ContactState;
-use crate::model::{Master, Model, Slave};
+use crate::model::{Dim, Master, Model, Slave};
 
 /// An imbalance above this (relative to `F_ref`) stops the run: a force was lost between the
 /// assembly and the records. Converged increments of the built-in scenes measure 3.2e-15 to
@@ -48,27 +48,33 @@ pub struct Imbalance {
     pub body: usize,
     /// `|F_b| / F_ref`.
     pub relative: f64,
-    /// `F_b` itself (x, y).
-    pub resultant: [f64; 2],
+    /// `F_b` itself (x, y, z; z zero in 2D).
+    pub resultant: [f64; 3],
 }
 
-/// The resultant force on every body of `model` (x, y), gathered as in the module doc.
-pub fn body_resultants(model: &Model, asm: &Assembler, t: f64, points: &[PointSnapshot]) -> Vec<[f64; 2]> {
+/// The resultant force on every body of `model` (x, y, z; z zero in 2D), gathered as in the
+/// module doc.
+pub fn body_resultants<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
+    t: f64,
+    points: &[PointSnapshot],
+) -> Vec<[f64; 3]> {
     let mut body_of_node = vec![usize::MAX; model.nodes.len()];
     for (b, body) in model.bodies.iter().enumerate() {
         body_of_node[body.first_node..body.first_node + body.node_count].fill(b);
     }
-    let mut total = vec![[0.0; 2]; model.bodies.len()];
+    let mut total = vec![[0.0; 3]; model.bodies.len()];
     let mut add = |node: usize, comp: usize, f: f64| {
         if let Some(t) = body_of_node.get(node).and_then(|&b| total.get_mut(b)) {
             t[comp] += f;
         }
     };
     for l in &model.loads {
-        add(l.dof / 2, l.dof % 2, l.ramp.at(t));
+        add(l.dof / S::D, l.dof % S::D, l.ramp.at(t));
     }
     for &d in &asm.dofs.prescribed {
-        add(d / 2, d % 2, asm.r_full[d]);
+        add(d / S::D, d % S::D, asm.r_full[d]);
     }
     for p in points.iter().filter(|p| p.state != ContactState::Open) {
         let Some(pair) = model.contacts.get(p.pair) else {
@@ -86,9 +92,11 @@ pub fn body_resultants(model: &Model, asm: &Assembler, t: f64, points: &[PointSn
             }
         }
     }
-    for (b, body) in model.bodies.iter().enumerate() {
-        if body.kinematics == crate::element::quad::Kinematics::Axisymmetric {
-            total[b][0] = 0.0;
+    if let Some(plane) = (S::D == 2).then(|| model.plane()) {
+        for (b, body) in plane.bodies.iter().enumerate() {
+            if body.kinematics == crate::element::quad::Kinematics::Axisymmetric {
+                total[b][0] = 0.0;
+            }
         }
     }
     total
@@ -96,9 +104,9 @@ pub fn body_resultants(model: &Model, asm: &Assembler, t: f64, points: &[PointSn
 
 /// The body with the largest resultant relative to `fref` or, where larger, the noise
 /// scale (module docs); `None` for a model without bodies.
-pub fn worst_imbalance(
-    model: &Model,
-    asm: &Assembler,
+pub fn worst_imbalance<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
     t: f64,
     points: &[PointSnapshot],
     fref: f64,
@@ -109,7 +117,7 @@ pub fn worst_imbalance(
         .enumerate()
         .map(|(body, r)| Imbalance {
             body,
-            relative: r[0].hypot(r[1]) / scale,
+            relative: r[0].hypot(r[1]).hypot(r[2]) / scale,
             resultant: r,
         })
         .max_by(|a, b| a.relative.total_cmp(&b.relative))
@@ -184,8 +192,8 @@ mod tests {
             panic!("a node slave")
         };
         let slave = (model.bodies.iter()).position(|b| (b.first_node..b.first_node + b.node_count).contains(&n));
-        assert_eq!(r[slave.unwrap()], f);
-        assert_eq!(r[master], [-f[0], -f[1]]);
+        assert_eq!(r[slave.unwrap()], [f[0], f[1], 0.0]);
+        assert_eq!(r[master], [-f[0], -f[1], 0.0]);
         let worst = worst_imbalance(model, &asm, 0.0, &points, 2.0).unwrap();
         let scale = 2.0f64.max(NOISE_TO_SCALE * asm.roundoff());
         assert!((worst.relative - f[0].hypot(f[1]) / scale).abs() < 1e-15);

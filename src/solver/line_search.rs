@@ -46,7 +46,7 @@ pub struct Watchdog {
     saved: Option<TrialState>,
     du: Vec<f64>,
     u_before: Vec<f64>,
-    alphas_before: Vec<[f64; 4]>,
+    alphas_before: Vec<f64>,
     /// The merit of the saved iterate, and the full steps taken since (`None`: no watch).
     merit: f64,
     relaxed: Option<usize>,
@@ -69,7 +69,7 @@ impl Watchdog {
     }
 }
 
-impl Iterate<'_> {
+impl<S: crate::model::Dim> Iterate<'_, S> {
     /// Take the correction in `ws.du` from the iterate saved in `ws.u_before` (and the
     /// contact system's [`crate::contact::system::ContactSystem::save_iterate`]) under the
     /// watchdog (module docs); on return the state is at the step taken, assembled with its

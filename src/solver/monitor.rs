@@ -21,11 +21,17 @@
 use crate::assembly::Assembler;
 use crate::contact::events::PointSnapshot;
 use crate::contact::law::ContactState;
-use crate::model::{Master, Model, Monitor, MonitorTarget, Slave};
+use crate::model::{Dim, Master, Model, Monitor, MonitorTarget, Slave};
 use crate::record::MonitorRecord;
 
 /// The records of all monitors of `model` at the converged state `u`, load level `t`.
-pub fn records(model: &Model, asm: &Assembler, u: &[f64], t: f64, points: &[PointSnapshot]) -> Vec<MonitorRecord> {
+pub fn records<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
+    u: &[f64],
+    t: f64,
+    points: &[PointSnapshot],
+) -> Vec<MonitorRecord> {
     model
         .monitors
         .iter()
@@ -33,13 +39,20 @@ pub fn records(model: &Model, asm: &Assembler, u: &[f64], t: f64, points: &[Poin
         .collect()
 }
 
-fn record(model: &Model, m: &Monitor, asm: &Assembler, u: &[f64], t: f64, points: &[PointSnapshot]) -> MonitorRecord {
+fn record<S: Dim>(
+    model: &Model<S>,
+    m: &Monitor,
+    asm: &Assembler<S>,
+    u: &[f64],
+    t: f64,
+    points: &[PointSnapshot],
+) -> MonitorRecord {
     let (displacement, force) = match &m.target {
         MonitorTarget::Nodes(nodes) => {
             let mut disp = 0.0;
             let mut force = 0.0;
             for &n in nodes {
-                let d = 2 * n + m.component;
+                let d = S::D * n + m.component;
                 disp += u[d];
                 force += if asm.dofs.is_prescribed(d) {
                     asm.r_full[d]
@@ -52,7 +65,7 @@ fn record(model: &Model, m: &Monitor, asm: &Assembler, u: &[f64], t: f64, points
         MonitorTarget::Rigid(r) => {
             let travel = model.rigid[*r].offset(t)[m.component];
             // the drive's force: the negative of the contact force received
-            (travel, -rigid_contact_force(model, *r, points)[m.component])
+            (travel, -rigid_contact_force(model.plane(), *r, points)[m.component])
         }
     };
     MonitorRecord {

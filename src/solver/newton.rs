@@ -10,7 +10,7 @@ use super::active_set::ActiveSetWatch;
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::decision::Kink;
-use crate::model::Model;
+use crate::model::{Dim, Model};
 use crate::record::IterationRecord;
 use crate::settings::NewtonSettings;
 
@@ -58,9 +58,9 @@ pub struct Converged {
 
 /// Assemble residual (and tangent if `with_tangent`) at `state`, refusing a state in which
 /// contact points passed through their master ([`crate::contact::system::ContactSystem::tunnelled`]).
-pub(super) fn assemble_at(
-    model: &Model,
-    asm: &mut Assembler,
+pub(super) fn assemble_at<S: Dim>(
+    model: &Model<S>,
+    asm: &mut Assembler<S>,
     state: &mut TrialState,
     t: f64,
     with_tangent: bool,
@@ -87,7 +87,12 @@ pub(super) fn inadmissible(f: &NewtonFailure) -> bool {
 
 /// The force scale of a state: the norm of the reactions (internal forces at prescribed
 /// DOFs), of the applied loads and of the contact forces.
-pub fn force_scale(model: &Model, asm: &Assembler, contact: &crate::contact::system::ContactSystem, t: f64) -> f64 {
+pub fn force_scale<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
+    contact: &crate::contact::system::ContactSystem,
+    t: f64,
+) -> f64 {
     let reac: f64 = asm.dofs.prescribed.iter().map(|&d| asm.r_full[d].powi(2)).sum();
     let load: f64 = model.loads.iter().map(|l| l.ramp.at(t).powi(2)).sum();
     (reac + load + contact.force_norm().powi(2)).sqrt()
@@ -109,7 +114,7 @@ pub struct Workspace {
     pub watch: ActiveSetWatch,
     /// The iterate a correction starts from (displacements and enhanced-strain parameters).
     pub(super) u_before: Vec<f64>,
-    pub(super) alphas_before: Vec<[f64; 4]>,
+    pub(super) alphas_before: Vec<f64>,
     /// Line searches of the attempt that found no decrease.
     pub(super) line_search_failures: usize,
     /// Iterations of the attempt that reached an active set not met before in it (a moving
@@ -165,10 +170,10 @@ struct Norms {
 /// residual ([`Assembler::roundoff`]); which test accepted is recorded ([`Acceptance`]).
 /// `F_ref` is fixed for the attempt: the largest force scale ([`force_scale`]) of the run's
 /// converged increments, or, before there is one, of the attempt's first iterate.
-pub fn solve_increment(
-    model: &Model,
+pub fn solve_increment<S: Dim>(
+    model: &Model<S>,
     settings: &NewtonSettings,
-    asm: &mut Assembler,
+    asm: &mut Assembler<S>,
     state: &mut TrialState,
     target: IncrementTarget,
     record: &mut dyn FnMut(IterationRecord) -> bool,
@@ -204,10 +209,10 @@ pub fn solve_increment(
 }
 
 /// The state of Newton's iteration within one attempt at an increment.
-pub(super) struct Iterate<'a> {
-    pub(super) model: &'a Model,
+pub(super) struct Iterate<'a, S: Dim> {
+    pub(super) model: &'a Model<S>,
     settings: &'a NewtonSettings,
-    pub(super) asm: &'a mut Assembler,
+    pub(super) asm: &'a mut Assembler<S>,
     pub(super) state: &'a mut TrialState,
     pub(super) ws: &'a mut Workspace,
     pub(super) t: f64,
@@ -217,13 +222,13 @@ pub(super) struct Iterate<'a> {
     missing_tangent: Option<(bool, Kink)>,
 }
 
-impl<'a> Iterate<'a> {
+impl<'a, S: Dim> Iterate<'a, S> {
     /// Prescribe the DOFs, size the buffers, assemble the first iterate and fix the
     /// reference force.
     fn start(
-        model: &'a Model,
+        model: &'a Model<S>,
         settings: &'a NewtonSettings,
-        asm: &'a mut Assembler,
+        asm: &'a mut Assembler<S>,
         state: &'a mut TrialState,
         target: IncrementTarget,
         ws: &'a mut Workspace,
@@ -467,7 +472,8 @@ impl<'a> Iterate<'a> {
     fn choose_kink_side(&mut self) -> Result<(), NewtonFailure> {
         let tol = self.norms.tol;
         let (eq, du) = (&self.asm.dofs.eq, &self.ws.du);
-        let driven_in = (self.state.contact).rest_driven_in(self.model, tol, &|d| eq[d].map_or(0.0, |e| du[e]));
+        let driven_in =
+            (self.state.contact).rest_driven_in(S::plane(self.model), tol, &|d| eq[d].map_or(0.0, |e| du[e]));
         if driven_in == 0 {
             return Ok(());
         }
@@ -480,7 +486,7 @@ impl<'a> Iterate<'a> {
         let resting = self
             .state
             .contact
-            .resting_forces(self.model, false, &|d| eq[d].map_or(0.0, |e| du[e]));
+            .resting_forces(S::plane(self.model), false, &|d| eq[d].map_or(0.0, |e| du[e]));
         if solved && resting.is_some_and(|f| f.normal_min > tol && f.cone_excess <= tol) {
             self.asm.timings.resting_corrections += 1;
             return Ok(());
@@ -532,7 +538,11 @@ impl<'a> Iterate<'a> {
     fn failure(&self) -> NewtonFailure {
         let iterations = self.ws.residuals.len() - 1;
         if self.ws.watch.cycling(3) {
-            let points = self.ws.watch.report(&self.state.contact, self.model, usize::MAX).len();
+            let points = self
+                .ws
+                .watch
+                .report(&self.state.contact, self.model.plane(), usize::MAX)
+                .len();
             return NewtonFailure::ActiveSetCycle { iterations, points };
         }
         NewtonFailure::MaxIterations { iterations }

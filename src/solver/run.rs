@@ -120,15 +120,15 @@ pub struct UnstableSummary {
 
 /// Run the problem's load stepping to `stepping.end`, reporting to `obs`. `stop` is polled
 /// between Newton iterations (Ctrl-C).
-pub fn run(
-    problem: &Problem,
+pub fn run<S: crate::model::Dim>(
+    problem: &Problem<S>,
     info: &RunInfo,
     obs: &mut dyn Observer,
     stop: &AtomicBool,
 ) -> Result<RunSummary, SolveError> {
     let started = Instant::now();
     let model = &problem.model;
-    obs.start(model, info)?;
+    obs.start(model.view(), info)?;
     for note in &model.notes {
         log(obs, LogLevel::Warning, 0, 0.0, note.clone())?;
     }

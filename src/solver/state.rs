@@ -1,15 +1,15 @@
 //! The solution state carried between increments.
 
 use crate::contact::system::ContactSystem;
-use crate::model::Model;
+use crate::model::{Dim, Model};
 
 /// Displacements, element-internal EAS parameters and contact history.
 #[derive(Debug, Clone)]
 pub struct TrialState {
-    /// Full displacement vector (2 per node).
+    /// Full displacement vector (`D` per node).
     pub u: Vec<f64>,
-    /// Enhanced-strain parameters per element.
-    pub alphas: Vec<[f64; 4]>,
+    /// Enhanced-strain parameters, [`Dim::ALPHAS`] per element (flat).
+    pub alphas: Vec<f64>,
     pub contact: ContactSystem,
 }
 
@@ -22,11 +22,11 @@ impl TrialState {
         self.contact.copy_iterate_from(&other.contact);
     }
 
-    pub fn new(model: &Model) -> Self {
+    pub fn new<S: Dim>(model: &Model<S>) -> Self {
         TrialState {
             u: vec![0.0; model.dof_count()],
-            alphas: vec![[0.0; 4]; model.elements.len()],
-            contact: ContactSystem::new(model),
+            alphas: vec![0.0; S::ALPHAS * model.elements.len()],
+            contact: ContactSystem::new(model.plane()),
         }
     }
 }

@@ -10,7 +10,7 @@ use super::run::{RunSummary, SolveError, UnstableSummary};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::system::Config;
-use crate::model::Model;
+use crate::model::{Dim, Model};
 use crate::record::{
     ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
     MonitorRecord, Observer, ObserverError, StepView,
@@ -21,9 +21,9 @@ use std::time::Instant;
 
 /// Check the elements at a converged increment; log a warning when the unstable set changes
 /// in size (the first time too), and keep the run's account.
-fn check_elements(
-    model: &Model,
-    asm: &Assembler,
+fn check_elements<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
     state: &TrialState,
     (increment, t): (usize, f64),
     last_count: &mut usize,
@@ -48,7 +48,7 @@ fn check_elements(
         let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
         let safe = unstable
             .iter()
-            .all(|e| model.bodies[model.elements[e.element].body].kind == crate::element::quad::ElementKind::Q4EasSafe);
+            .all(|e| S::holds_hourglass(&model.bodies[model.elements[e.element].body].kind));
         let remedy = if safe {
             "the elements are already `q4-eas-safe`: they are deformed beyond what one element resolves (refine the mesh where they are)"
         } else {
@@ -99,14 +99,14 @@ pub(super) fn log(
 }
 
 /// The finite-difference check of the tangent at a failing iterate, as one log line.
-fn diagnose_tangent(
-    model: &Model,
-    asm: &mut Assembler,
+fn diagnose_tangent<S: Dim>(
+    model: &Model<S>,
+    asm: &mut Assembler<S>,
     trial: &TrialState,
     t: f64,
     points: &[ChangingPoint],
 ) -> String {
-    let nodes = super::tangent_check::nodes_of_points(model, &trial.contact, points);
+    let nodes = super::tangent_check::nodes_of_points(model.plane(), &trial.contact, points);
     match super::tangent_check::check_tangent(model, asm, trial, t, &nodes) {
         Ok(c) => format!("at the last iterate: {}", c.summary()),
         Err(e) => format!("at the last iterate: tangent check not possible ({e})"),
@@ -115,8 +115,8 @@ fn diagnose_tangent(
 
 /// Drive the load stepping: each increment is converged (cut back on failure), committed
 /// and reported, and the step grows back toward the nominal one.
-pub(super) fn drive(
-    model: &Model,
+pub(super) fn drive<S: Dim>(
+    model: &Model<S>,
     settings: &SolverSettings,
     obs: &mut dyn Observer,
     stop: &AtomicBool,
@@ -158,10 +158,10 @@ struct ConvergedIncrement {
 }
 
 /// What the load stepping carries from one increment to the next.
-struct Stepping<'a> {
-    model: &'a Model,
+struct Stepping<'a, S: Dim> {
+    model: &'a Model<S>,
     settings: &'a SolverSettings,
-    asm: Assembler,
+    asm: Assembler<S>,
     ws: Workspace,
     /// The last converged state.
     committed: TrialState,
@@ -186,8 +186,8 @@ struct Stepping<'a> {
     node_sizes: Vec<f64>,
 }
 
-impl<'a> Stepping<'a> {
-    fn new(model: &'a Model, settings: &'a SolverSettings) -> Self {
+impl<'a, S: Dim> Stepping<'a, S> {
+    fn new(model: &'a Model<S>, settings: &'a SolverSettings) -> Self {
         let st = &settings.stepping;
         let nominal = st.end / st.increments.max(1) as f64;
         let mut asm = Assembler::new(model);
@@ -197,9 +197,9 @@ impl<'a> Stepping<'a> {
         asm.linear.set_threads(threads, crate::linalg::chooser::PARALLEL_FROM);
         let mut committed = TrialState::new(model);
         let penalty = settings.newton.active_set == crate::settings::ActiveSet::Penalty;
-        committed.contact.set_penalty_weights(model, penalty);
+        committed.contact.set_penalty_weights(model.plane(), penalty);
         let start = Config {
-            model,
+            model: model.plane(),
             u: &committed.u,
             t: 0.0,
         };
@@ -210,7 +210,7 @@ impl<'a> Stepping<'a> {
             asm,
             ws: Workspace::default(),
             committed,
-            labels: crate::record::ContactLabels::new(model),
+            labels: crate::record::ContactLabels::new(model.plane()),
             summary: RunSummary::default(),
             increment: 0,
             t: 0.0,
@@ -222,7 +222,7 @@ impl<'a> Stepping<'a> {
             last_dt: None,
             recording: std::time::Duration::ZERO,
             unstable_count: 0,
-            node_sizes: super::penetration::node_sizes(model),
+            node_sizes: super::penetration::node_sizes(model.plane()),
         }
     }
 
@@ -274,7 +274,7 @@ impl<'a> Stepping<'a> {
                 attempt,
                 predicted: predict,
             };
-            if let Some(f) = super::search_reach::rigid_step_beyond_search(self.model, self.t, t_new) {
+            if let Some(f) = super::search_reach::rigid_step_beyond_search(self.model.plane(), self.t, t_new) {
                 self.cut_back(f, &trial, t_new, cutbacks, obs)?;
                 cutbacks += 1;
                 attempt += 1;
@@ -370,7 +370,7 @@ impl<'a> Stepping<'a> {
             TangentCheckWhen::EveryFailedAttempt => true,
         };
         if check {
-            let points = self.ws.watch.report(&trial.contact, model, 8);
+            let points = self.ws.watch.report(&trial.contact, model.plane(), 8);
             let message = diagnose_tangent(model, &mut self.asm, trial, t_new, &points);
             log(obs, LogLevel::Warning, increment, t_new, message)?;
         }
@@ -383,7 +383,7 @@ impl<'a> Stepping<'a> {
                 reason: self.failure_reason(&f),
                 residuals: self.ws.residuals.clone(),
                 kind: f.kind(),
-                points: self.ws.watch.report(&trial.contact, model, 8),
+                points: self.ws.watch.report(&trial.contact, model.plane(), 8),
             });
         }
         let message = format!("increment {increment} at t = {t_new:.6}: {f}; cutting the step {dt:.3e} in half");
@@ -406,7 +406,7 @@ impl<'a> Stepping<'a> {
                 | FailureKind::LinearSolver
                 | FailureKind::NonFinite
         );
-        match may_lack_a_solution.then(|| friction_limit(self.model, &self.committed.contact, self.t)) {
+        match may_lack_a_solution.then(|| friction_limit(self.model.plane(), &self.committed.contact, self.t)) {
             Some(Some(hint)) => format!("{f}; {hint}"),
             _ => f.to_string(),
         }
@@ -441,28 +441,13 @@ impl<'a> Stepping<'a> {
         self.summary.on_extension += usize::from(done.on_extension > 0);
         self.summary.line_search_failures += done.conv.line_search_failures;
         self.summary.front_iterations += done.conv.front_iterations;
-        let rec = IncrementRecord {
-            increment: self.increment,
-            t: self.t,
-            dt: self.t - t_prev,
-            iterations: done.conv.iterations,
-            cutbacks: done.cutbacks,
-            converged: true,
-            wall_time_s: t_inc.elapsed().as_secs_f64(),
-            residuals: done.conv.residuals,
-            monitor: monitors.first().cloned(),
-            monitors,
-            reaction_total: self.reaction_total(),
-            accepted_by: done.conv.accepted_by.as_str().into(),
-            line_search_failures: done.conv.line_search_failures,
-            on_extension: done.on_extension,
-            front_iterations: done.conv.front_iterations,
-            equilibrium: imbalance.map_or(0.0, |i| i.relative),
-        };
+        let equilibrium = imbalance.map_or(0.0, |i| i.relative);
+        let (conv, cutbacks, on_extension) = (done.conv, done.cutbacks, done.on_extension);
+        let rec = self.increment_record((conv, cutbacks, on_extension), t_prev, t_inc, monitors, equilibrium);
         self.summary.monitor = rec.monitor.clone();
         self.summary.monitors = rec.monitors.clone();
         let view = StepView {
-            model: self.model,
+            model: self.model.view(),
             u: &self.committed.u,
             contact: &points,
             crossings: &crossings,
@@ -484,12 +469,44 @@ impl<'a> Stepping<'a> {
         Ok(())
     }
 
+    /// The record of the increment just committed (at `self.t`, from `t_prev`): its Newton
+    /// outcome, cut-backs and points on a segment's extension.
+    fn increment_record(
+        &self,
+        (conv, cutbacks, on_extension): (Converged, usize, usize),
+        t_prev: f64,
+        t_inc: Instant,
+        monitors: Vec<MonitorRecord>,
+        equilibrium: f64,
+    ) -> IncrementRecord {
+        let (reaction_total, reaction_z) = self.reaction_total();
+        IncrementRecord {
+            increment: self.increment,
+            t: self.t,
+            dt: self.t - t_prev,
+            iterations: conv.iterations,
+            cutbacks,
+            converged: true,
+            wall_time_s: t_inc.elapsed().as_secs_f64(),
+            residuals: conv.residuals,
+            monitor: monitors.first().cloned(),
+            monitors,
+            reaction_total,
+            reaction_z,
+            accepted_by: conv.accepted_by.as_str().into(),
+            line_search_failures: conv.line_search_failures,
+            on_extension,
+            front_iterations: conv.front_iterations,
+            equilibrium,
+        }
+    }
+
     /// The contact records, monitors and equilibrium check of the converged iterate (they
     /// compare it with the previous increment, so they come first), then the contact
     /// history committed and its crossings.
     fn commit_contact(&mut self) -> ContactCommit {
         let cfg = Config {
-            model: self.model,
+            model: self.model.plane(),
             u: &self.committed.u,
             t: self.t,
         };
@@ -547,7 +564,7 @@ impl<'a> Stepping<'a> {
     /// deepest for the run's summary.
     fn check_penetration(&mut self, points: &[ContactPointRecord], obs: &mut dyn Observer) -> Result<(), SolveError> {
         use super::penetration::{deepest, warning, DEEP_PENETRATION};
-        let Some(p) = deepest(self.model, &self.node_sizes, points) else {
+        let Some(p) = deepest(self.model.plane(), &self.node_sizes, points) else {
             return Ok(());
         };
         if p.ratio <= DEEP_PENETRATION {
@@ -595,13 +612,13 @@ impl<'a> Stepping<'a> {
         })
     }
 
-    /// Sum of the reactions at the prescribed DOFs, per direction.
-    fn reaction_total(&self) -> [f64; 2] {
-        let mut total = [0.0; 2];
+    /// Sum of the reactions at the prescribed DOFs, per direction (x, y; z in 3D).
+    fn reaction_total(&self) -> ([f64; 2], Option<f64>) {
+        let mut total = [0.0; 3];
         for &d in &self.asm.dofs.prescribed {
-            total[d % 2] += self.asm.r_full[d];
+            total[d % S::D] += self.asm.r_full[d];
         }
-        total
+        ([total[0], total[1]], (S::D == 3).then_some(total[2]))
     }
 
     /// After `grow_after` converged increments in a row, the step grows toward the nominal.

@@ -24,7 +24,7 @@
 
 use super::state::TrialState;
 use crate::assembly::{Assembler, AssemblyError};
-use crate::model::Model;
+use crate::model::{Dim, Model};
 
 /// Relative column error above which a column counts as wrong (well above the `O(h)`
 /// truncation and `O(ε/h)` round-off of a central difference at `h = 1e-7 L`).
@@ -98,9 +98,9 @@ pub const ALL_COLUMNS_UP_TO: usize = 4000;
 /// Check the tangent at `state` (time `t`) column by column. `nodes`: the nodes whose
 /// columns to check when the model has more than [`ALL_COLUMNS_UP_TO`] free equations.
 /// `state` is left as it was; the assembler holds the residual and tangent at `state`.
-pub fn check_tangent(
-    model: &Model,
-    asm: &mut Assembler,
+pub fn check_tangent<S: Dim>(
+    model: &Model<S>,
+    asm: &mut Assembler<S>,
     state: &TrialState,
     t: f64,
     nodes: &[usize],
@@ -111,12 +111,12 @@ pub fn check_tangent(
     } else {
         nodes
             .iter()
-            .flat_map(|&nd| [2 * nd, 2 * nd + 1])
+            .flat_map(|&nd| (0..S::D).map(move |c| S::D * nd + c))
             .filter(|&d| asm.dofs.eq[d].is_some())
             .collect()
     };
     let h = 1e-7 * model_size(model);
-    let residual_at = |asm: &mut Assembler, u: &[f64]| -> Result<Vec<f64>, AssemblyError> {
+    let residual_at = |asm: &mut Assembler<S>, u: &[f64]| -> Result<Vec<f64>, AssemblyError> {
         let mut trial = state.clone();
         asm.assemble(model, u, t, &mut trial.alphas, &mut trial.contact, false)?;
         let mut r = vec![0.0; n];
@@ -189,16 +189,19 @@ fn compare(d: usize, k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> C
 }
 
 /// Diagonal of the bounding box of the model's nodes and rigid bodies' points.
-pub(crate) fn model_size(model: &Model) -> f64 {
-    let mut lo = [f64::MAX; 2];
-    let mut hi = [f64::MIN; 2];
+pub(crate) fn model_size<S: Dim>(model: &Model<S>) -> f64 {
+    let mut lo = [f64::MAX; 3];
+    let mut hi = [f64::MIN; 3];
     for x in &model.nodes {
-        for c in 0..2 {
-            lo[c] = lo[c].min(x[c]);
-            hi[c] = hi[c].max(x[c]);
+        for c in 0..S::D {
+            lo[c] = lo[c].min(x.as_ref()[c]);
+            hi[c] = hi[c].max(x.as_ref()[c]);
         }
     }
-    let l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let mut l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    if S::D == 3 {
+        l = l.hypot(hi[2] - lo[2]);
+    }
     if l.is_finite() && l > 0.0 {
         l
     } else {

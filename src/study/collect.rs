@@ -5,7 +5,6 @@
 
 use super::classify::FailureEvidence;
 use crate::contact::law::ContactState;
-use crate::model::Model;
 use crate::record::{IncrementRecord, IterationRecord, Observer, ObserverError, RunInfo, StepView};
 use serde::{Deserialize, Serialize};
 
@@ -61,7 +60,8 @@ pub struct Collector {
 }
 
 impl Observer for Collector {
-    fn start(&mut self, model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, model: crate::model::ModelRef<'_>, _info: &RunInfo) -> Result<(), ObserverError> {
+        let model = model.plane();
         self.pair_names = model.contacts.iter().map(|c| c.name.clone()).collect();
         self.pair_state = vec![(false, false); model.contacts.len()];
         Ok(())

@@ -199,8 +199,8 @@ pub struct Finished {
 /// Solve a loaded problem, every record handed to `observers` and to the collector that
 /// makes the outcome: the one runner behind [`Study::run`], `contrail run` and so the
 /// service's workers (which run `contrail run`).
-pub fn run_loaded(
-    problem: &crate::problem::Problem,
+pub fn run_loaded<S: crate::model::Dim>(
+    problem: &crate::problem::Problem<S>,
     info: &crate::record::RunInfo,
     observers: &mut [&mut dyn Observer],
     stop: &AtomicBool,
@@ -220,10 +220,10 @@ pub fn run_loaded(
 
 /// The typed outcome of a finished solve: its status (a failure classified from the error
 /// and the collector's evidence), figures and data.
-fn outcome_of(
+fn outcome_of<S: crate::model::Dim>(
     result: &Result<crate::solver::RunSummary, SolveError>,
     collector: Collector,
-    problem: &crate::problem::Problem,
+    problem: &crate::problem::Problem<S>,
     info: &crate::record::RunInfo,
     started: Instant,
 ) -> StudyOutcome {

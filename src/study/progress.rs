@@ -4,7 +4,6 @@
 //! contact points).
 
 use super::StudyOutcome;
-use crate::model::Model;
 use crate::record::{ChangingPoint, IncrementRecord, Observer, ObserverError, RunInfo, StepView};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -130,10 +129,10 @@ impl ProgressSink {
 }
 
 impl Observer for ProgressSink {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         self.t_end = info.settings.stepping.end;
         self.write(&ProgressLine::Start {
-            scene: model.name.clone(),
+            scene: model.name().to_string(),
             dofs: info.dofs,
             t_end: self.t_end,
             transfer: info.transfer.clone(),

@@ -96,6 +96,12 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
             MeshSpec::Rectangle { elements: e, .. } | MeshSpec::Annulus { elements: e, .. } => {
                 elements = elements.saturating_add(e[0].saturating_mul(e[1]));
             }
+            MeshSpec::Box { .. } => {
+                return Err(ApiError::bad(
+                    format!("body `{}` is 3D (a `box` mesh)", b.name),
+                    "the service runs 2D scenes only for now: run 3D scenes with `contrail run`",
+                ))
+            }
             MeshSpec::Gmsh { .. } if builtin && !sets.iter().any(|s| s.contains("mesh")) => {}
             MeshSpec::Gmsh { file } => {
                 return Err(ApiError::bad(

@@ -395,6 +395,9 @@ mod tests {
             monitor: None,
             monitors: vec![],
             end: 1.0,
+            dim: None,
+            nodes_3d: vec![],
+            hexahedra: vec![],
         }
     }
 

@@ -282,11 +282,16 @@ pub fn scene_attachment(info: &RunInfo, time_ns: u64) -> mcap::Attachment<'_> {
 }
 
 impl<W: Write + Seek> Observer for McapSink<W> {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
-        self.scene_stride = self.opts.scene.stride(info.settings.stepping.increments);
+    fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
+        // the Foxglove scene draws 2D meshes only: none for a 3D model
+        self.scene_stride = match model.dim() {
+            2 => self.opts.scene.stride(info.settings.stepping.increments),
+            _ => 0,
+        };
+        let record = ModelRecord::of(model, info.settings.stepping.end);
+        let model = model.plane();
         let metadata = metadata(info, model, &self.opts, self.scene_stride);
         let now = self.out.now();
-        let record = ModelRecord::new(model, info.settings.stepping.end);
         let mut format = Format3Writer::new(&record, &info.scene, self.opts.thin_out_of_reach);
         let r = (self.out.register(metadata, &[scene_attachment(info, now)]))
             .and_then(|_| self.out.put(schemas::MODEL, &record))
@@ -388,13 +393,12 @@ impl<W: Write + Seek> McapSink<W> {
             };
             self.out.put(schemas::CROSSING, &msg)?;
         }
-        let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
-        let layout = self
-            .pressure_layout
-            .get_or_insert_with(|| PressureLayout::new(view.model));
-        let pressure = profiles(layout, view.model, view.u, rec.t, rec.increment, view.contact);
-        let layout = (self.interface_layout).get_or_insert_with(|| InterfaceLayout::new(view.model));
-        let interfaces = interfaces(layout, view.model, view.u, rec.t, rec.increment, view.contact);
+        let positions = PositionsMessage::of(rec.increment, rec.t, view.model, view.u);
+        let plane = view.model.plane();
+        let layout = self.pressure_layout.get_or_insert_with(|| PressureLayout::new(plane));
+        let pressure = profiles(layout, plane, view.u, rec.t, rec.increment, view.contact);
+        let layout = (self.interface_layout).get_or_insert_with(|| InterfaceLayout::new(plane));
+        let interfaces = interfaces(layout, plane, view.u, rec.t, rec.increment, view.contact);
         if positions_now {
             format.positions(&mut self.out, &positions, &pressure)?;
             format.interfaces(&mut self.out, &interfaces)?;

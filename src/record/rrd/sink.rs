@@ -6,7 +6,6 @@
 //! [`RerunView`] logs from records alone, so `contrail replay` rebuilds the same stream from
 //! an MCAP recording; [`RerunSink`] is the observer that feeds it during a run.
 
-use crate::model::Model;
 use crate::record::interface::{interfaces, InterfaceLayout};
 use crate::record::messages::{ModelRecord, PositionsMessage};
 pub use crate::record::rrd::view::{RerunView, FLUSH_TIMEOUT};
@@ -157,7 +156,10 @@ impl RerunSink {
 }
 
 impl Observer for RerunSink {
-    fn start(&mut self, model: &Model, info: &RunInfo) -> Result<(), ObserverError> {
+    /// A 3D model is shown without its mesh (the view draws 2D meshes only): the curves,
+    /// residuals and logs of the run.
+    fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
+        let model = model.plane();
         let stream = self
             .stream
             .take()
@@ -175,8 +177,15 @@ impl Observer for RerunSink {
     }
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         let name = self.name.clone();
-        let positions = PositionsMessage::new(rec.increment, rec.t, view.model, view.u);
-        let joined = interfaces(&self.interfaces, view.model, view.u, rec.t, rec.increment, view.contact);
+        let positions = PositionsMessage::new(rec.increment, rec.t, view.model.plane(), view.u);
+        let joined = interfaces(
+            &self.interfaces,
+            view.model.plane(),
+            view.u,
+            rec.t,
+            rec.increment,
+            view.contact,
+        );
         let v = self.view()?;
         (v.increment(rec, Some(&positions), view.contact, view.crossings))
             .and_then(|()| v.interfaces(rec.increment, &joined))

@@ -25,11 +25,11 @@ impl<W: Write> CsvSink<W> {
 }
 
 impl<W: Write> Observer for CsvSink<W> {
-    fn start(&mut self, m: &crate::model::Model, _i: &crate::record::RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, m: crate::model::ModelRef<'_>, _i: &crate::record::RunInfo) -> Result<(), ObserverError> {
         let mut header =
             "increment,t,displacement,force,iterations,cutbacks,reaction_x,reaction_y,contact_closed,crossings"
                 .to_string();
-        for mon in &m.monitors {
+        for mon in m.monitors() {
             for q in ["displacement", "force"] {
                 header.push(',');
                 header.push_str(&field(&format!("{}.{q}", mon.label)));

@@ -28,7 +28,7 @@ impl<W: Write> JsonlSink<W> {
 }
 
 impl<W: Write> Observer for JsonlSink<W> {
-    fn start(&mut self, _m: &crate::model::Model, info: &RunInfo) -> Result<(), ObserverError> {
+    fn start(&mut self, _m: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         self.line("run", info)
     }
     fn iteration(&mut self, rec: &IterationRecord) -> Result<(), ObserverError> {

@@ -70,6 +70,23 @@ pub struct Piece {
 
 const VTK_VERTEX: u8 = 1;
 const VTK_QUAD: u8 = 9;
+const VTK_HEXAHEDRON: u8 = 12;
+
+/// The mesh dataset of a 3D model: reference nodes, hexahedra (Gmsh/VTK node order, which
+/// is `VTK_HEXAHEDRON`'s), displacement and the body of each cell (no element fields yet).
+pub fn solid_piece(nodes: &[[f64; 3]], hexes: &[[usize; 8]], body: &[usize], u: &[f64]) -> Piece {
+    let disp = (0..3 * nodes.len())
+        .map(|d| u.get(d).copied().unwrap_or(f64::NAN))
+        .collect();
+    Piece {
+        points: nodes.to_vec(),
+        connectivity: hexes.iter().flatten().map(|&n| n as i64).collect(),
+        offsets: (1..=hexes.len()).map(|k| 8 * k as i64).collect(),
+        types: vec![VTK_HEXAHEDRON; hexes.len()],
+        point_data: vec![Array::f64("displacement", 3, disp)],
+        cell_data: vec![Array::i32("body", body.iter().map(|&b| b as i32).collect())],
+    }
+}
 
 /// The mesh dataset: reference nodes, quads, displacement and (when known) element fields
 /// (`None` per element: its fields could not be evaluated, written as NaN).

@@ -5,9 +5,9 @@
 //! interruption — under a temporary name and renamed into place.
 
 use crate::element::fields::{centre_fields_with, CentreFields};
-use crate::model::Model;
+use crate::model::{AnyModel, Model, ModelRef, Solid};
 use crate::record::atomic_file::AtomicFile;
-use crate::record::vtu::file::{contact_piece, mesh_piece, write_pvd, write_vtu, Piece, PvdEntry};
+use crate::record::vtu::file::{contact_piece, mesh_piece, solid_piece, write_pvd, write_vtu, Piece, PvdEntry};
 use crate::record::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -33,6 +33,13 @@ pub fn model_piece(model: &Model, u: &[f64]) -> Piece {
     let body: Vec<usize> = model.elements.iter().map(|e| e.body).collect();
     let fields = model_fields(model, u);
     mesh_piece(&model.nodes, &quads, &body, u, Some(&fields))
+}
+
+/// The mesh dataset of a 3D model at displacement `u` (hexahedra).
+pub fn solid_model_piece(model: &Model<Solid>, u: &[f64]) -> Piece {
+    let hexes: Vec<[usize; 8]> = model.elements.iter().map(|e| e.nodes).collect();
+    let body: Vec<usize> = model.elements.iter().map(|e| e.body).collect();
+    solid_piece(&model.nodes, &hexes, &body, u)
 }
 
 /// A series of `.vtu` files and the `.pvd` that collects them.
@@ -101,7 +108,7 @@ pub struct VtuSink {
     name: String,
     /// The last converged increment if it has not been written yet.
     pending: Option<(usize, f64, Vec<f64>, Vec<ContactPointRecord>)>,
-    model: Option<Model>,
+    model: Option<AnyModel>,
 }
 
 impl VtuSink {
@@ -122,21 +129,24 @@ impl VtuSink {
 
     fn write(
         &mut self,
-        model: &Model,
+        model: ModelRef<'_>,
         increment: usize,
         t: f64,
         u: &[f64],
         contact: &[ContactPointRecord],
     ) -> io::Result<()> {
-        let mesh = model_piece(model, u);
-        let contact = (!model.contacts.is_empty()).then(|| contact_piece(contact));
+        let mesh = match model {
+            ModelRef::Plane(model) => model_piece(model, u),
+            ModelRef::Solid(model) => solid_model_piece(model, u),
+        };
+        let contact = (!model.plane().contacts.is_empty()).then(|| contact_piece(contact));
         self.series.step(increment, t, &mesh, contact.as_ref())
     }
 }
 
 impl Observer for VtuSink {
-    fn start(&mut self, model: &Model, _info: &RunInfo) -> Result<(), ObserverError> {
-        self.model = Some(model.clone());
+    fn start(&mut self, model: ModelRef<'_>, _info: &RunInfo) -> Result<(), ObserverError> {
+        self.model = Some(model.to_owned());
         Ok(())
     }
 
@@ -153,7 +163,7 @@ impl Observer for VtuSink {
 
     fn finish(&mut self, _outcome: &Outcome) -> Result<(), ObserverError> {
         if let (Some((increment, t, u, contact)), Some(model)) = (self.pending.take(), self.model.take()) {
-            self.write(&model, increment, t, &u, &contact)
+            self.write(model.view(), increment, t, &u, &contact)
                 .map_err(|e| self.err(e))?;
         }
         self.series.finish().map_err(|e| self.err(e))

@@ -1,0 +1,165 @@
+//! A scene of 3D bodies (`mesh = { kind = "box", … }`) resolved into a [`Model<Solid>`]: the
+//! bodies' hexahedral meshes, then the same fixes, loads and monitors as in 2D
+//! (`build_steps.rs`, generic over the dimension). What 3D does not have yet — rigid bodies,
+//! contact pairs, pressures, body loads, skew supports, the 2D body models — is refused,
+//! naming the missing feature.
+
+use super::build::Ctx;
+use super::types::{BodyModel, MeshSpec, SceneFile};
+use super::{SceneError, SceneSource};
+use crate::element::material::{lame, Material};
+use crate::model::box_mesh::BoxMesh;
+use crate::model::{Body, Element, Model, Solid, SolidKind};
+use crate::problem::Problem;
+use crate::settings::SolverSettings;
+
+/// Whether the scene is 3D: one of its bodies has a 3D mesh.
+pub fn is_3d(s: &SceneFile) -> bool {
+    s.bodies.iter().any(|b| b.mesh.is_3d())
+}
+
+/// Build the problem of a checked 3D scene.
+pub fn build_solid(src: &SceneSource, s: &SceneFile) -> Result<Problem<Solid>, SceneError> {
+    super::validate::validate(src, s)?;
+    let cx = Ctx::new(src);
+    let end = s.stepping.end;
+    if s.stepping.increments == 0 || end <= 0.0 {
+        return Err(cx.err(
+            "stepping",
+            "stepping needs end > 0 and increments ≥ 1".into(),
+            "fix [stepping]",
+        ));
+    }
+    refuse_2d_only(&cx, s)?;
+    let mut m = Model::<Solid> {
+        name: s.name.clone(),
+        description: s.description.clone(),
+        ..Model::default()
+    };
+    add_solid_bodies(&cx, s, &mut m)?;
+    super::build::steps::add_fixes(&cx, s, &mut m, end)?;
+    super::build::steps::add_loads(&cx, s, &mut m, end)?;
+    super::build::steps::add_monitors(&cx, s, &mut m)?;
+    Ok(Problem {
+        model: m,
+        settings: SolverSettings {
+            stepping: s.stepping.clone(),
+            newton: s.solver.clone(),
+        },
+    })
+}
+
+/// What a 3D scene cannot have yet, refused with the missing feature named.
+fn refuse_2d_only(cx: &Ctx, s: &SceneFile) -> Result<(), SceneError> {
+    let missing = |near: &str, what: &str| {
+        cx.err(
+            near,
+            format!("this scene has 3D bodies (a `box` mesh) and {what}: not in contrail's 3D models yet"),
+            "3D contact, rigid bodies and surface loads come in a later slice of issue 33; remove them, or mesh the bodies in 2D",
+        )
+    };
+    if let Some(c) = s.contacts.first() {
+        return Err(missing(&c.name, "contact pairs ([[contact]]): 3D contact"));
+    }
+    if let Some(r) = s.rigid.first() {
+        return Err(missing(&r.name, "rigid bodies ([[rigid]])"));
+    }
+    if !s.pressures.is_empty() {
+        return Err(missing("pressure", "pressures ([[pressure]])"));
+    }
+    if let Some(b) = s.body_loads.first() {
+        return Err(missing(&b.body, "body loads ([[body_load]])"));
+    }
+    if let Some(b) = s.bodies.iter().find(|b| !b.mesh.is_3d()) {
+        return Err(cx.err(
+            &b.name,
+            format!("body `{}` has a 2D mesh in a scene of 3D bodies", b.name),
+            "a scene is 2D or 3D in all its bodies: give every body a `box` mesh, or none",
+        ));
+    }
+    if let Some(b) = s
+        .bodies
+        .iter()
+        .find(|b| b.model != BodyModel::PlaneStrain || b.thickness.is_some())
+    {
+        return Err(cx.err(
+            &b.name,
+            format!(
+                "body `{}`: model = \"{}\" is a 2D setting; its `box` mesh makes it 3D",
+                b.name,
+                b.model.name()
+            ),
+            "remove `model` and `thickness` from 3D bodies",
+        ));
+    }
+    Ok(())
+}
+
+/// The 3D bodies: material, element (the scene's `element` key mapped by
+/// [`SolidKind::from_element`]), box mesh with its node sets and faces.
+fn add_solid_bodies(cx: &Ctx, s: &SceneFile, m: &mut Model<Solid>) -> Result<(), SceneError> {
+    for b in &s.bodies {
+        if m.bodies.iter().any(|o| o.name == b.name) {
+            return Err(cx.err(
+                &b.name,
+                format!("two bodies are named `{}`", b.name),
+                "give each body its own name",
+            ));
+        }
+        let mat = &b.material;
+        if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
+                "fix [body.material]",
+            ));
+        }
+        let (lambda, mu) = lame(mat.young, mat.poisson);
+        let material = match mat.model {
+            super::types::MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
+            super::types::MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
+        };
+        let MeshSpec::Box {
+            origin,
+            size,
+            elements,
+            grading,
+        } = &b.mesh
+        else {
+            continue;
+        };
+        let mesh = BoxMesh::new(*origin, *size, *elements, *grading);
+        let dofs = 3 * (m.nodes.len() + mesh.nodes.len());
+        if dofs > s.limits.max_dofs {
+            return Err(cx.err(
+                &b.name,
+                format!(
+                    "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
+                    b.name, s.limits.max_dofs
+                ),
+                "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
+            ));
+        }
+        let (off, bi) = (m.nodes.len(), m.bodies.len());
+        m.nodes.extend(mesh.nodes.iter().copied());
+        (m.elements).extend(mesh.hexes.iter().map(|h| Element {
+            nodes: h.map(|n| n + off),
+            body: bi,
+        }));
+        m.bodies.push(Body {
+            name: b.name.clone(),
+            material,
+            kind: SolidKind::from_element(b.element),
+            kinematics: (),
+            first_node: off,
+            node_count: mesh.nodes.len(),
+            node_sets: (mesh.node_sets.into_iter())
+                .map(|(k, v)| (k, v.into_iter().map(|n| n + off).collect()))
+                .collect(),
+            faces: (mesh.faces.into_iter())
+                .map(|(k, v)| (k, v.into_iter().map(|q| q.map(|n| n + off)).collect()))
+                .collect(),
+        });
+    }
+    Ok(())
+}
