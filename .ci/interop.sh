@@ -10,7 +10,7 @@
 #    of a replay (`rerun rrd verify`);
 #  - meshio reads the ParaView series (.pvd + .vtu) of `run --out X.pvd` and of
 #    `export X.mcap --vtu DIR` and checks names, shapes and values against the run's MCAP and
-#    CSV (.ci/vtu_check.py).
+#    CSV (.ci/vtu_check.py), and the hexahedra of a 3D run against its MCAP (.ci/vtu_check_3d.py).
 # The virtual environment is created on first use and reused (CONTRAIL_INTEROP_VENV).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -78,6 +78,9 @@ record strip-channel --quiet --set stepping.increments=60 --set fix.1.value=-0.3
     --all-points --out "$TMP/scenes.mcap"
 # a two-pass pair: its /interface channel
 record contact-patch --quiet --out "$TMP/patch.mcap"
+# a 3D solid: its recording, rerun stream and ParaView series of hexahedra
+record cantilever-3d --quiet --out "$TMP/c3.mcap" --out "$TMP/c3.pvd" --rerun-save "$TMP/c3.rrd"
+"$BIN" inspect "$TMP/c3.mcap" >/dev/null
 
 echo "== interop: the published Foxglove schemas"
 # the package ships its JSON Schemas as a module (dist/jsonschema): written out as files
@@ -95,7 +98,7 @@ echo "== interop: mcap + jsonschema"
 "$VENV/bin/python" .ci/interop.py --schemas schemas --foxglove "$FOXGLOVE_DIR" \
     "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
     "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap" "$TMP/scenes.mcap" \
-    "$TMP/patch.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
+    "$TMP/patch.mcap" "$TMP/c3.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
 
 echo "== interop: the numpy snippet of docs/recording.md"
 # the python block after the marker line, run as it is on a recording
@@ -108,9 +111,10 @@ echo "== interop: meshio reads the VTU series"
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/hd2.pvd" "$TMP/hd.mcap" "$TMP/hd2.csv" --every 2
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/exported/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"
+"$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/c3.pvd" "$TMP/c3.mcap"
 
 echo "== interop: rerun rrd verify"
-for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd"; do
+for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd" "$TMP/c3.rrd"; do
     "$VENV/bin/rerun" rrd verify "$f"
 done
 echo "== interop: contrail serve → contrail submit strip-channel --wait → Python mcap over HTTP range requests"
