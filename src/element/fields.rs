@@ -5,13 +5,20 @@
 //! [`quad_centre_stress`] (for `Q4Eas` with the enhanced parameters re-solved for the given
 //! displacements, as the kernel does); the Cauchy stress is `σ = J⁻¹ F S Fᵀ` with the
 //! compatible `F` at the centre, and `σ33 = S33 / J` is the plane-strain out-of-plane stress.
+//! A hexahedron's ([`hex8_centre_fields`]): the Gauss average of its Green–Lagrange strain
+//! (compatible plus enhanced), `S` of the 3D law there, `σ = J⁻¹ F S Fᵀ` with the centre `F`.
 
+use super::hex8::{
+    hex8_dn_dxi, hex8_gauss_strains, hex8_jacobian, hex8_residual_tangent_with, Hex8Error, Hex8Geometry, Hex8Kind,
+    EAS_COUNT,
+};
 use super::material::Material;
+use super::material3d::strain_tensor;
 use super::quad::{
     quad_centre_deformation_gradient, quad_centre_stress, quad_residual_tangent_with, ElementError, ElementKind,
     Kinematics, QuadGeometry,
 };
-use nalgebra::{Matrix2, Vector3, Vector4};
+use nalgebra::{Matrix2, Matrix3, Vector3, Vector4, Vector6};
 
 /// Fields at the centre of one element (tensors as `[[11, 12, 13], [21, 22, 23], [31, 32, 33]]`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,6 +111,58 @@ pub fn centre_fields_with(
         von_mises,
     })
 }
+
+/// Centre fields of a hexahedron with reference nodes `x` (Gmsh/VTK order) and nodal
+/// displacements `u`: `E = ⅛ Σ_q (E_c + G α)_q`, the Gauss average of the strain (for
+/// [`Hex8Kind::Hex8Eas`] with `α` re-solved for `u` by the kernel, without holds; in a
+/// homogeneous state `α = 0` and every Gauss point has the same `E`), `S` of
+/// [`Material::stress_tangent_3d`] at `E`, and the Cauchy stress `σ = J⁻¹ F S Fᵀ` with the
+/// compatible `F = I + Σ_I u_I ⊗ ∇_X N_I` at the centre, `J = det F`; von Mises
+/// `√(½[(σ11 − σ22)² + (σ22 − σ33)² + (σ33 − σ11)²] + 3(σ12² + σ23² + σ13²))`.
+/// (Simo & Hughes, *Computational Inelasticity*, 1998, §7 for `σ = J⁻¹ F S Fᵀ`.)
+pub fn hex8_centre_fields(
+    kind: Hex8Kind,
+    material: &Material,
+    x: &[[f64; 3]; 8],
+    u: &[[f64; 3]; 8],
+) -> Result<CentreFields, Hex8Error> {
+    let geo = Hex8Geometry::new(kind, x)?;
+    let mut alpha = [0.0; EAS_COUNT];
+    hex8_residual_tangent_with(kind, material, &geo, u, &mut alpha, &mut [0.0; 24], None)?;
+    let e = hex8_gauss_strains(&geo, u, &alpha)
+        .iter()
+        .fold(Vector6::zeros(), |a, q| a + q * 0.125);
+    let (s, _) = material.stress_tangent_3d(&e)?;
+    let d = hex8_dn_dxi(&[0.0; 3]);
+    let jinv = hex8_jacobian(x, &d).try_inverse().ok_or(Hex8Error::BadGeometry(0.0))?;
+    let f = Matrix3::identity() + hex8_jacobian(u, &d) * jinv;
+    let j = f.determinant();
+    if j <= 0.0 || !j.is_finite() {
+        return Err(Hex8Error::Inverted(j));
+    }
+    let sig = f * stress_tensor(&s) * f.transpose() / j;
+    let tensor = |m: &Matrix3<f64>| -> [[f64; 3]; 3] { std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)])) };
+    let von_mises = (0.5
+        * ((sig[(0, 0)] - sig[(1, 1)]).powi(2)
+            + (sig[(1, 1)] - sig[(2, 2)]).powi(2)
+            + (sig[(2, 2)] - sig[(0, 0)]).powi(2))
+        + 3.0 * (sig[(0, 1)].powi(2) + sig[(1, 2)].powi(2) + sig[(0, 2)].powi(2)))
+    .sqrt();
+    Ok(CentreFields {
+        green_lagrange: tensor(&strain_tensor(&e)),
+        cauchy: tensor(&sig),
+        von_mises,
+    })
+}
+
+/// The symmetric tensor of a Voigt stress `[11, 22, 33, 12, 23, 13]` (no factor on shears).
+fn stress_tensor(s: &Vector6<f64>) -> Matrix3<f64> {
+    Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2])
+}
+
+#[cfg(test)]
+#[path = "fields_hex_tests.rs"]
+mod hex_tests;
 
 #[cfg(test)]
 mod tests {

@@ -77,6 +77,10 @@ pub enum GmshError {
     NodeOffBody { file: String, group: String, node: u64 },
     #[error("{file}: the $Nodes section is inconsistent: {message}\n  hint: export the mesh again from Gmsh")]
     Nodes { file: String, message: String },
+    #[error("{file}: the file has no hexahedra (a `gmsh-3d` mesh is made of 8-node hexahedra)\n  hint: put the volume in a physical group (`Physical Volume(\"body\") = {{1}};`) and mesh it with hexahedra (a transfinite or extruded volume with `Recombine`), or save every element with `Mesh.SaveAll = 1;`")]
+    NoHexes { file: String },
+    #[error("{file}: hexahedron {element} is {what}\n  hint: export the mesh again from Gmsh, or fix the element's node order")]
+    BadHex { file: String, element: u64, what: String },
 }
 
 /// What Gmsh element type `code` is, and how to avoid it.
@@ -92,7 +96,7 @@ fn unsupported(code: u8) -> (&'static str, &'static str) {
         ),
         4..=7 | 11..=14 | 17..=19 => (
             "3D element",
-            "contrail is two-dimensional: mesh a plane surface with `gmsh -2`",
+            "a `gmsh` mesh is 2D: mesh a plane surface with `gmsh -2`, or make the body 3D with `kind = \"gmsh-3d\"` (8-node hexahedra)",
         ),
         _ => (
             "element",
@@ -395,6 +399,10 @@ fn checked_quads(
     }
     Ok((quads, reoriented))
 }
+
+#[path = "gmsh_hex.rs"]
+mod hex;
+pub use hex::{read_gmsh_hex, GmshSolidMesh};
 
 #[path = "gmsh_groups.rs"]
 mod groups;

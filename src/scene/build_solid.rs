@@ -36,7 +36,7 @@ pub fn build_solid(src: &SceneSource, s: &SceneFile) -> Result<Problem<Solid>, S
         description: s.description.clone(),
         ..Model::default()
     };
-    add_solid_bodies(&cx, s, &mut m)?;
+    add_solid_bodies(&cx, src, s, &mut m)?;
     super::build::steps::add_fixes(&cx, s, &mut m, end)?;
     super::build::steps::add_loads(&cx, s, &mut m, end)?;
     super::build::steps::add_monitors(&cx, s, &mut m)?;
@@ -96,8 +96,8 @@ fn refuse_2d_only(cx: &Ctx, s: &SceneFile) -> Result<(), SceneError> {
 }
 
 /// The 3D bodies: material, element (the scene's `element` key mapped by
-/// [`SolidKind::from_element`]), box mesh with its node sets and faces.
-fn add_solid_bodies(cx: &Ctx, s: &SceneFile, m: &mut Model<Solid>) -> Result<(), SceneError> {
+/// [`SolidKind::from_element`]), box or Gmsh mesh with its node sets and faces.
+fn add_solid_bodies(cx: &Ctx, src: &SceneSource, s: &SceneFile, m: &mut Model<Solid>) -> Result<(), SceneError> {
     for b in &s.bodies {
         if m.bodies.iter().any(|o| o.name == b.name) {
             return Err(cx.err(
@@ -119,16 +119,9 @@ fn add_solid_bodies(cx: &Ctx, s: &SceneFile, m: &mut Model<Solid>) -> Result<(),
             super::types::MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
             super::types::MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
         };
-        let MeshSpec::Box {
-            origin,
-            size,
-            elements,
-            grading,
-        } = &b.mesh
-        else {
+        let Some(mesh) = solid_mesh(src, b)? else {
             continue;
         };
-        let mesh = BoxMesh::new(*origin, *size, *elements, *grading);
         let dofs = 3 * (m.nodes.len() + mesh.nodes.len());
         if dofs > s.limits.max_dofs {
             return Err(cx.err(
@@ -162,4 +155,27 @@ fn add_solid_bodies(cx: &Ctx, s: &SceneFile, m: &mut Model<Solid>) -> Result<(),
         });
     }
     Ok(())
+}
+
+/// The hexahedral mesh of a 3D body: its box, or its Gmsh file (`gmsh-3d`); `None` for a 2D
+/// mesh (refused before).
+fn solid_mesh(src: &SceneSource, b: &super::types::BodySpec) -> Result<Option<BoxMesh>, SceneError> {
+    Ok(match &b.mesh {
+        MeshSpec::Box {
+            origin,
+            size,
+            elements,
+            grading,
+        } => Some(BoxMesh::new(*origin, *size, *elements, *grading)),
+        MeshSpec::Gmsh3d { file } => {
+            let g = super::mesh::gmsh_solid(src, b, file)?;
+            Some(BoxMesh {
+                nodes: g.nodes,
+                hexes: g.hexes,
+                node_sets: g.node_sets,
+                faces: g.faces,
+            })
+        }
+        _ => None,
+    })
 }

@@ -3,7 +3,7 @@
 
 use super::types::{Bias, BodySpec, MeshSpec};
 use super::{builtin, locate, SceneError, SceneSource};
-use crate::model::gmsh::{read_gmsh, GmshError};
+use crate::model::gmsh::{read_gmsh, read_gmsh_hex, GmshError, GmshSolidMesh};
 use crate::model::mesh::{annulus_on, axis_coords, rotate, RectMesh};
 use std::borrow::Cow;
 use std::collections::BTreeMap;
@@ -61,14 +61,20 @@ fn read_limited(path: &Path) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Read and check the Gmsh file of a body.
-fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneError> {
-    let wrap = |error: GmshError| SceneError::Mesh {
+/// The error of body `b`'s Gmsh file, located at its `file` key.
+fn gmsh_error<'a>(src: &'a SceneSource, b: &'a BodySpec, file: &'a str) -> impl Fn(GmshError) -> SceneError + 'a {
+    move |error: GmshError| SceneError::Mesh {
         origin: src.origin.clone(),
         location: locate(&src.text, file),
         body: b.name.clone(),
         error: Box::new(error),
-    };
+    }
+}
+
+/// The bytes of body `b`'s Gmsh file (shipped with a built-in scene, or read from disk) and
+/// its label for messages.
+fn gmsh_bytes<'s>(src: &'s SceneSource, b: &BodySpec, file: &str) -> Result<(String, Cow<'s, [u8]>), SceneError> {
+    let wrap = gmsh_error(src, b, file);
     let (label, shipped, path) = resolve(src, file);
     let bytes: Cow<[u8]> = match shipped {
         Some(b) => Cow::Borrowed(b),
@@ -84,6 +90,19 @@ fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneEr
             })
         })?),
     };
+    Ok((label, bytes))
+}
+
+/// Read and check the Gmsh file of a 3D body (`kind = "gmsh-3d"`: hexahedra).
+pub(super) fn gmsh_solid(src: &SceneSource, b: &BodySpec, file: &str) -> Result<GmshSolidMesh, SceneError> {
+    let (label, bytes) = gmsh_bytes(src, b, file)?;
+    read_gmsh_hex(&label, &bytes).map_err(gmsh_error(src, b, file))
+}
+
+/// Read and check the Gmsh file of a body.
+fn gmsh(src: &SceneSource, b: &BodySpec, file: &str) -> Result<BodyMesh, SceneError> {
+    let wrap = gmsh_error(src, b, file);
+    let (label, bytes) = gmsh_bytes(src, b, file)?;
     let m = read_gmsh(&label, &bytes).map_err(wrap)?;
     Ok(BodyMesh {
         nodes: m.nodes,
@@ -176,9 +195,9 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             }
         }
         MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
-        MeshSpec::Box { .. } => {
+        MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. } => {
             return Err(invalid(
-                format!("body `{}`: a `box` mesh makes a 3D body", b.name),
+                format!("body `{}`: a `box` or `gmsh-3d` mesh makes a 3D body", b.name),
                 "a scene is 2D or 3D in all its bodies",
             ))
         }

@@ -73,6 +73,14 @@ pub enum MeshSpec {
         /// file shipped with it, e.g. `half-disc.msh`).
         file: String,
     },
+    /// A Gmsh MSH 4.1 file (ASCII or binary) of 8-node hexahedra: the body is 3D. Its
+    /// physical groups are the body's node sets, its physical surfaces of quadrilaterals on
+    /// the boundary its faces (`model::gmsh::read_gmsh_hex`).
+    #[serde(rename = "gmsh-3d")]
+    Gmsh3d {
+        /// Path of the `.msh` file, relative to the scene file.
+        file: String,
+    },
 }
 
 pub(super) fn unit_grading() -> [f64; 2] {
@@ -86,7 +94,7 @@ pub(super) fn unit_grading3() -> [f64; 3] {
 impl MeshSpec {
     /// Whether the mesh makes a 3D body.
     pub fn is_3d(&self) -> bool {
-        matches!(self, MeshSpec::Box { .. })
+        matches!(self, MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. })
     }
 }
 

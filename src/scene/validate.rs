@@ -348,7 +348,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
                 2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
             }
             MeshSpec::Box { elements, .. } => 3.0 * elements.iter().map(|&n| n as f64 + 1.0).product::<f64>(),
-            MeshSpec::Gmsh { .. } => 0.0,
+            MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         })
         .sum();
     let worst = s.bodies.iter().enumerate().max_by(|a, b| {
@@ -357,7 +357,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
                 elements[0] as f64 * elements[1] as f64
             }
             MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
-            MeshSpec::Gmsh { .. } => 0.0,
+            MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         };
         n(a.1).total_cmp(&n(b.1))
     });
@@ -372,7 +372,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             format!("[{}, {}]", elements[0], elements[1])
         }
         MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
-        MeshSpec::Gmsh { file, .. } => file.clone(),
+        MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {
         return Err(c.fail(

@@ -46,7 +46,7 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             Ok(h)
         }
         // checked when the file is read (`model::gmsh`): its size is not known here
-        MeshSpec::Gmsh { .. } => Ok(f64::INFINITY),
+        MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => Ok(f64::INFINITY),
         MeshSpec::Box {
             origin,
             size,

@@ -73,19 +73,57 @@ const VTK_QUAD: u8 = 9;
 const VTK_HEXAHEDRON: u8 = 12;
 
 /// The mesh dataset of a 3D model: reference nodes, hexahedra (Gmsh/VTK node order, which
-/// is `VTK_HEXAHEDRON`'s), displacement and the body of each cell (no element fields yet).
-pub fn solid_piece(nodes: &[[f64; 3]], hexes: &[[usize; 8]], body: &[usize], u: &[f64]) -> Piece {
+/// is `VTK_HEXAHEDRON`'s), displacement, the element fields at each hexahedron's centre when
+/// known (as in 2D: `cauchy_stress` and `green_lagrange_strain` as full 3×3 tensors,
+/// `von_mises`) and the body of each cell.
+pub fn solid_piece(
+    nodes: &[[f64; 3]],
+    hexes: &[[usize; 8]],
+    body: &[usize],
+    u: &[f64],
+    fields: Option<&[Option<CentreFields>]>,
+) -> Piece {
     let disp = (0..3 * nodes.len())
         .map(|d| u.get(d).copied().unwrap_or(f64::NAN))
         .collect();
-    Piece {
+    let mut p = Piece {
         points: nodes.to_vec(),
         connectivity: hexes.iter().flatten().map(|&n| n as i64).collect(),
         offsets: (1..=hexes.len()).map(|k| 8 * k as i64).collect(),
         types: vec![VTK_HEXAHEDRON; hexes.len()],
         point_data: vec![Array::f64("displacement", 3, disp)],
-        cell_data: vec![Array::i32("body", body.iter().map(|&b| b as i32).collect())],
+        cell_data: Vec::new(),
+    };
+    if let Some(fields) = fields {
+        push_fields(&mut p, fields);
     }
+    p.cell_data
+        .push(Array::i32("body", body.iter().map(|&b| b as i32).collect()));
+    p
+}
+
+/// The element fields as cell data (`None` per element: written as NaN).
+fn push_fields(p: &mut Piece, fields: &[Option<CentreFields>]) {
+    let tensor = |get: fn(&CentreFields) -> [[f64; 3]; 3]| -> Vec<f64> {
+        fields
+            .iter()
+            .flat_map(|f| {
+                f.as_ref()
+                    .map_or([f64::NAN; 9], |f| get(f).concat().try_into().unwrap_or([f64::NAN; 9]))
+            })
+            .collect()
+    };
+    p.cell_data.push(Array::f64("cauchy_stress", 9, tensor(|f| f.cauchy)));
+    p.cell_data
+        .push(Array::f64("green_lagrange_strain", 9, tensor(|f| f.green_lagrange)));
+    p.cell_data.push(Array::f64(
+        "von_mises",
+        1,
+        fields
+            .iter()
+            .map(|f| f.as_ref().map_or(f64::NAN, |f| f.von_mises))
+            .collect(),
+    ));
 }
 
 /// The mesh dataset: reference nodes, quads, displacement and (when known) element fields
@@ -115,26 +153,7 @@ pub fn mesh_piece(
         .collect();
     p.point_data.push(Array::f64("displacement", 3, disp));
     if let Some(fields) = fields {
-        let tensor = |get: fn(&CentreFields) -> [[f64; 3]; 3]| -> Vec<f64> {
-            fields
-                .iter()
-                .flat_map(|f| {
-                    f.as_ref()
-                        .map_or([f64::NAN; 9], |f| get(f).concat().try_into().unwrap_or([f64::NAN; 9]))
-                })
-                .collect()
-        };
-        p.cell_data.push(Array::f64("cauchy_stress", 9, tensor(|f| f.cauchy)));
-        p.cell_data
-            .push(Array::f64("green_lagrange_strain", 9, tensor(|f| f.green_lagrange)));
-        p.cell_data.push(Array::f64(
-            "von_mises",
-            1,
-            fields
-                .iter()
-                .map(|f| f.as_ref().map_or(f64::NAN, |f| f.von_mises))
-                .collect(),
-        ));
+        push_fields(&mut p, fields);
     }
     p.cell_data
         .push(Array::i32("body", body.iter().map(|&b| b as i32).collect()));

@@ -4,7 +4,7 @@
 //! (increment 12). The `.pvd` is written when the run ends — also after a failure or an
 //! interruption — under a temporary name and renamed into place.
 
-use crate::element::fields::{centre_fields_with, CentreFields};
+use crate::element::fields::{centre_fields_with, hex8_centre_fields, CentreFields};
 use crate::model::{AnyModel, Model, ModelRef, Solid};
 use crate::record::atomic_file::AtomicFile;
 use crate::record::vtu::file::{contact_piece, mesh_piece, solid_piece, write_pvd, write_vtu, Piece, PvdEntry};
@@ -35,11 +35,27 @@ pub fn model_piece(model: &Model, u: &[f64]) -> Piece {
     mesh_piece(&model.nodes, &quads, &body, u, Some(&fields))
 }
 
-/// The mesh dataset of a 3D model at displacement `u` (hexahedra).
+/// Centre fields of every hexahedron of a 3D model for the displacement `u`
+/// ([`hex8_centre_fields`]; `None` where the element cannot be evaluated).
+pub fn solid_model_fields(model: &Model<Solid>, u: &[f64]) -> Vec<Option<CentreFields>> {
+    model
+        .elements
+        .iter()
+        .map(|e| {
+            let body = &model.bodies[e.body];
+            let x = e.nodes.map(|n| model.nodes[n]);
+            let ue = e.nodes.map(|n| [u[3 * n], u[3 * n + 1], u[3 * n + 2]]);
+            hex8_centre_fields(body.kind.kind, &body.material, &x, &ue).ok()
+        })
+        .collect()
+}
+
+/// The mesh dataset of a 3D model at displacement `u` (hexahedra), with its element fields.
 pub fn solid_model_piece(model: &Model<Solid>, u: &[f64]) -> Piece {
     let hexes: Vec<[usize; 8]> = model.elements.iter().map(|e| e.nodes).collect();
     let body: Vec<usize> = model.elements.iter().map(|e| e.body).collect();
-    solid_piece(&model.nodes, &hexes, &body, u)
+    let fields = solid_model_fields(model, u);
+    solid_piece(&model.nodes, &hexes, &body, u, Some(&fields))
 }
 
 /// A series of `.vtu` files and the `.pvd` that collects them.
@@ -167,5 +183,72 @@ impl Observer for VtuSink {
                 .map_err(|e| self.err(e))?;
         }
         self.series.finish().map_err(|e| self.err(e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::material::{lame, Material};
+    use crate::element::material3d::stress_voigt;
+    use crate::element::quad::ElementKind;
+    use crate::model::box_mesh::BoxMesh;
+    use crate::model::{Body, Element, SolidKind};
+    use crate::record::vtu::file::Values;
+    use nalgebra::{Matrix3, Vector3};
+
+    /// A 3D model's VTU cells carry the centre fields: on a homogeneous state `x = F X` of a
+    /// 2×1×2 box of EAS hexahedra (neo-Hooke, E = 200, ν = 0.3), every cell's
+    /// `cauchy_stress` is `J⁻¹ F S Fᵀ` of the material at `E = ½(FᵀF − I)` to 1e-10 relative.
+    #[test]
+    fn hexahedra_carry_the_cauchy_stress_of_a_homogeneous_state() {
+        let mesh = BoxMesh::new([0.0; 3], [2.0, 1.0, 1.5], [2, 1, 2], [1.0, 1.0, 1.3]);
+        let (lambda, mu) = lame(200.0, 0.3);
+        let material = Material::NeoHookean { lambda, mu };
+        let model = Model::<Solid> {
+            nodes: mesh.nodes.clone(),
+            elements: mesh.hexes.iter().map(|&h| Element { nodes: h, body: 0 }).collect(),
+            bodies: vec![Body {
+                name: "block".into(),
+                material,
+                kind: SolidKind::from_element(ElementKind::Q4EasSafe),
+                kinematics: (),
+                first_node: 0,
+                node_count: mesh.nodes.len(),
+                node_sets: mesh.node_sets,
+                faces: mesh.faces,
+            }],
+            ..Model::default()
+        };
+        let fm = Matrix3::new(0.96, 0.03, 0.0, -0.02, 1.04, 0.01, 0.05, 0.0, 0.99);
+        let u: Vec<f64> = (mesh.nodes.iter())
+            .flat_map(|p| {
+                let x = Vector3::from(*p);
+                let d = fm * x - x;
+                [d[0], d[1], d[2]]
+            })
+            .collect();
+        let e = 0.5 * (fm.transpose() * fm - Matrix3::identity());
+        let mut ev = stress_voigt(&e);
+        for a in 3..6 {
+            ev[a] *= 2.0;
+        }
+        let (s, _) = material.stress_tangent_3d(&ev).unwrap();
+        let st = Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]);
+        let sig = fm * st * fm.transpose() / fm.determinant();
+        let piece = solid_model_piece(&model, &u);
+        let cauchy = piece.cell_data.iter().find(|a| a.name == "cauchy_stress").unwrap();
+        let Values::F64(v) = &cauchy.values else {
+            panic!("f64 values")
+        };
+        assert_eq!((cauchy.components, v.len()), (9, 9 * model.elements.len()));
+        for cell in v.chunks(9) {
+            for (k, c) in cell.iter().enumerate() {
+                let want = sig[(k / 3, k % 3)];
+                assert!((c - want).abs() < 1e-10 * sig.norm(), "σ{k}: {c} vs {want}");
+            }
+        }
+        let names: Vec<&str> = piece.cell_data.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["cauchy_stress", "green_lagrange_strain", "von_mises", "body"]);
     }
 }
