@@ -7,7 +7,6 @@
 use super::build::Ctx;
 use super::types::{BodyModel, MeshSpec, SceneFile};
 use super::{SceneError, SceneSource};
-use crate::element::material::{lame, Material};
 use crate::model::box_mesh::BoxMesh;
 use crate::model::{Body, Element, Model, Solid, SolidKind};
 use crate::problem::Problem;
@@ -99,26 +98,7 @@ fn refuse_2d_only(cx: &Ctx, s: &SceneFile) -> Result<(), SceneError> {
 /// [`SolidKind::from_element`]), box or Gmsh mesh with its node sets and faces.
 fn add_solid_bodies(cx: &Ctx, src: &SceneSource, s: &SceneFile, m: &mut Model<Solid>) -> Result<(), SceneError> {
     for b in &s.bodies {
-        if m.bodies.iter().any(|o| o.name == b.name) {
-            return Err(cx.err(
-                &b.name,
-                format!("two bodies are named `{}`", b.name),
-                "give each body its own name",
-            ));
-        }
-        let mat = &b.material;
-        if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
-            return Err(cx.err(
-                &b.name,
-                format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
-                "fix [body.material]",
-            ));
-        }
-        let (lambda, mu) = lame(mat.young, mat.poisson);
-        let material = match mat.model {
-            super::types::MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
-            super::types::MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
-        };
+        let material = super::build::steps::body_material(cx, b, m.bodies.iter().any(|o| o.name == b.name))?;
         let Some(mesh) = solid_mesh(src, b)? else {
             continue;
         };

@@ -5,31 +5,37 @@
 use super::*;
 use crate::element::quad::Kinematics;
 
+/// A body's material from its `[body.material]`, refusing a name already `taken` by another
+/// body and elastic constants out of range (`E > 0`, `−1 < ν < 0.5`).
+pub(in crate::scene) fn body_material(cx: &Ctx, b: &BodySpec, taken: bool) -> Result<Material, SceneError> {
+    if taken {
+        return Err(cx.err(
+            &b.name,
+            format!("two bodies are named `{}`", b.name),
+            "give each body its own name",
+        ));
+    }
+    let mat = &b.material;
+    if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
+        return Err(cx.err(
+            &b.name,
+            format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
+            "fix [body.material]",
+        ));
+    }
+    let (lambda, mu) = lame(mat.young, mat.poisson);
+    Ok(match mat.model {
+        MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
+        MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
+    })
+}
+
 /// The deformable bodies: material, mesh (nodes, elements, node sets and faces, numbered
 /// after the bodies before); records each body's mesh file in `cx` for later messages.
 pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(), SceneError> {
     let mut mesh_files = Vec::new();
     for b in &s.bodies {
-        if m.bodies.iter().any(|o| o.name == b.name) {
-            return Err(cx.err(
-                &b.name,
-                format!("two bodies are named `{}`", b.name),
-                "give each body its own name",
-            ));
-        }
-        let mat = &b.material;
-        if mat.young <= 0.0 || !(-1.0 < mat.poisson && mat.poisson < 0.5) {
-            return Err(cx.err(
-                &b.name,
-                format!("body `{}`: need young > 0 and −1 < poisson < 0.5", b.name),
-                "fix [body.material]",
-            ));
-        }
-        let (lambda, mu) = lame(mat.young, mat.poisson);
-        let material = match mat.model {
-            MaterialModel::SaintVenantKirchhoff => Material::SaintVenantKirchhoff { lambda, mu },
-            MaterialModel::NeoHookean => Material::NeoHookean { lambda, mu },
-        };
+        let material = body_material(cx, b, m.bodies.iter().any(|o| o.name == b.name))?;
         let kinematics = crate::scene::body_model::kinematics(cx, b)?;
         let mut mesh = body_mesh(cx.src, b)?;
         if kinematics == Kinematics::Axisymmetric {

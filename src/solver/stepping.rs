@@ -19,6 +19,25 @@ use crate::settings::{Predictor, SolverSettings, TangentCheckWhen};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+/// The warning for elements that lost stability: how many, the first five, and the remedy.
+fn unstable_warning<S: Dim>(model: &Model<S>, unstable: &[super::element_check::UnstableElement]) -> String {
+    let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
+    let safe = unstable
+        .iter()
+        .all(|e| S::holds_hourglass(&model.bodies[model.elements[e.element].body].kind));
+    let remedy = if safe {
+        "the elements are already `q4-eas-safe`: they are deformed beyond what one element resolves (refine the mesh where they are)"
+    } else {
+        "the element kind `q4-eas-safe` (the default) does not hourglass in compression"
+    };
+    format!(
+        "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; {remedy}",
+        unstable.len(),
+        names.join(", "),
+        if unstable.len() > 5 { ", …" } else { "" }
+    )
+}
+
 /// Check the elements at a converged increment; log a warning when the unstable set changes
 /// in size (the first time too), and keep the run's account.
 fn check_elements<S: Dim>(
@@ -45,27 +64,7 @@ fn check_elements<S: Dim>(
         }
     };
     if unstable.len() != *last_count && !unstable.is_empty() {
-        let names: Vec<String> = unstable.iter().take(5).map(|e| e.element.to_string()).collect();
-        let safe = unstable
-            .iter()
-            .all(|e| S::holds_hourglass(&model.bodies[model.elements[e.element].body].kind));
-        let remedy = if safe {
-            "the elements are already `q4-eas-safe`: they are deformed beyond what one element resolves (refine the mesh where they are)"
-        } else {
-            "the element kind `q4-eas-safe` (the default) does not hourglass in compression"
-        };
-        log(
-            obs,
-            LogLevel::Warning,
-            increment,
-            t,
-            format!(
-                "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; {remedy}",
-                unstable.len(),
-                names.join(", "),
-                if unstable.len() > 5 { ", …" } else { "" }
-            ),
-        )?;
+        log(obs, LogLevel::Warning, increment, t, unstable_warning(model, &unstable))?;
     }
     *last_count = unstable.len();
     if let Some(worst) = unstable.first() {
