@@ -107,6 +107,15 @@ fn unsupported(code: u8) -> (&'static str, &'static str) {
 
 /// `$MeshFormat` version, file type and data size, checked before `mshio` sees the file
 /// (it supports 4.1 with 8-byte sizes only).
+/// The MSH 4.1 file in `bytes` parsed (its header checked first); `file` names it in errors.
+fn parse(file: &str, bytes: &[u8]) -> Result<MshFile<u64, i32, f64>, GmshError> {
+    check_header(file, bytes)?;
+    mshio::parse_msh_bytes(bytes).map_err(|e| GmshError::Parse {
+        file: file.into(),
+        message: e.to_string().lines().take(6).collect::<Vec<_>>().join(" / "),
+    })
+}
+
 fn check_header(file: &str, bytes: &[u8]) -> Result<(), GmshError> {
     let head = String::from_utf8_lossy(&bytes[..bytes.len().min(256)]);
     let mut lines = head.lines().map(str::trim).skip_while(|l| l.is_empty());
@@ -290,11 +299,7 @@ fn quad_shape(x: &[[f64; 2]; 4]) -> (f64, f64) {
 
 /// Read a Gmsh MSH 4.1 mesh (ASCII or binary) from its bytes; `file` names it in errors.
 pub fn read_gmsh(file: &str, bytes: &[u8]) -> Result<GmshMesh, GmshError> {
-    check_header(file, bytes)?;
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| GmshError::Parse {
-        file: file.into(),
-        message: e.to_string().lines().take(6).collect::<Vec<_>>().join(" / "),
-    })?;
+    let msh = parse(file, bytes)?;
     let names = physical_names(bytes);
     let groups = entity_groups(&msh);
     let coords = node_table(file, &msh)?;

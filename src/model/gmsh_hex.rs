@@ -17,7 +17,7 @@
 //!   hexahedron (as [`super::box_mesh::BoxMesh`]'s faces). A surface through the interior is
 //!   a node set only (listed in [`GmshSolidMesh::interior_surfaces`]).
 
-use super::{check_header, element_name, node_table, physical_names, unsupported, GmshError};
+use super::{element_name, node_table, parse, physical_names, unsupported, GmshError};
 use crate::element::hex8::{Hex8Geometry, Hex8Kind};
 use mshio::{ElementType, MshFile};
 use std::collections::{BTreeMap, HashMap};
@@ -122,11 +122,7 @@ fn entity_groups(msh: &MshFile<u64, i32, f64>) -> HashMap<(i32, i32), Vec<i32>> 
 
 /// Read a Gmsh MSH 4.1 mesh of hexahedra (ASCII or binary); `file` names it in errors.
 pub fn read_gmsh_hex(file: &str, bytes: &[u8]) -> Result<GmshSolidMesh, GmshError> {
-    check_header(file, bytes)?;
-    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| GmshError::Parse {
-        file: file.into(),
-        message: e.to_string().lines().take(6).collect::<Vec<_>>().join(" / "),
-    })?;
+    let msh = parse(file, bytes)?;
     let names = physical_names(bytes);
     let groups = entity_groups(&msh);
     let coords = node_table(file, &msh)?;

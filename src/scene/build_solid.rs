@@ -102,17 +102,7 @@ fn add_solid_bodies(cx: &Ctx, src: &SceneSource, s: &SceneFile, m: &mut Model<So
         let Some(mesh) = solid_mesh(src, b)? else {
             continue;
         };
-        let dofs = 3 * (m.nodes.len() + mesh.nodes.len());
-        if dofs > s.limits.max_dofs {
-            return Err(cx.err(
-                &b.name,
-                format!(
-                    "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
-                    b.name, s.limits.max_dofs
-                ),
-                "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
-            ));
-        }
+        super::build::steps::check_dof_limit(cx, s, b, 3 * (m.nodes.len() + mesh.nodes.len()))?;
         let (off, bi) = (m.nodes.len(), m.bodies.len());
         m.nodes.extend(mesh.nodes.iter().copied());
         (m.elements).extend(mesh.hexes.iter().map(|h| Element {

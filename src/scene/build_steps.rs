@@ -5,6 +5,21 @@
 use super::*;
 use crate::element::quad::Kinematics;
 
+/// Refuse a body that would take the model to `dofs` DOFs, beyond the scene's limit.
+pub(in crate::scene) fn check_dof_limit(cx: &Ctx, s: &SceneFile, b: &BodySpec, dofs: usize) -> Result<(), SceneError> {
+    if dofs <= s.limits.max_dofs {
+        return Ok(());
+    }
+    Err(cx.err(
+        &b.name,
+        format!(
+            "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
+            b.name, s.limits.max_dofs
+        ),
+        "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
+    ))
+}
+
 /// A body's material from its `[body.material]`, refusing a name already `taken` by another
 /// body and elastic constants out of range (`E > 0`, `−1 < ν < 0.5`).
 pub(in crate::scene) fn body_material(cx: &Ctx, b: &BodySpec, taken: bool) -> Result<Material, SceneError> {
@@ -41,17 +56,7 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
         if kinematics == Kinematics::Axisymmetric {
             crate::scene::body_model::check_radii(cx, &b.name, &mut mesh.nodes)?;
         }
-        let dofs = 2 * (m.nodes.len() + mesh.nodes.len());
-        if dofs > s.limits.max_dofs {
-            return Err(cx.err(
-                &b.name,
-                format!(
-                    "body `{}`: the model would have {dofs} DOFs, more than the limit of {}",
-                    b.name, s.limits.max_dofs
-                ),
-                "use a coarser mesh, or raise the limit with --set limits.max_dofs=N",
-            ));
-        }
+        check_dof_limit(cx, s, b, 2 * (m.nodes.len() + mesh.nodes.len()))?;
         mesh_files.push(mesh.file.clone());
         let off = m.nodes.len();
         let bi = m.bodies.len();
