@@ -5,9 +5,10 @@
 //! assembly and the Newton/stepping layers are written once, generic over `S: Dim`, and
 //! monomorphised: the 2D code runs exactly the fixed-size arrays it ran before.
 //!
-//! Contact, rigid bodies and skew supports are still 2D only: a model's contact view is
-//! [`Dim::plane`] — the model itself in 2D, an empty 2D model in 3D (the scene refuses 3D
-//! bodies with contact pairs), so the contact layer sees no points there.
+//! The contact layer sees a model through two views: [`Dim::plane`] (node-to-segment pairs;
+//! the model itself in 2D, an empty 2D model in 3D) and [`Dim::solid`] (node-to-surface
+//! pairs, `Model::surface_contacts`; the model in 3D, `None` in 2D). Rigid outlines and skew
+//! supports are 2D only.
 
 use super::{Body, Model};
 use crate::element::hex8::{hex8_hourglass_holds, hex8_residual_tangent_with, Hex8Geometry, Hex8Kind, EAS_COUNT};
@@ -90,6 +91,9 @@ pub trait Dim: Copy + Clone + Debug + Default + PartialEq + Eq + Send + Sync + '
     /// The 2D view of the model the contact layer works on: the model itself in 2D, an empty
     /// model in 3D (no contact in 3D yet).
     fn plane(m: &Model<Self>) -> &Model<Plane>;
+    /// The 3D view of the model the surface-contact layer works on (`contact3d`): the model
+    /// itself in 3D, `None` in 2D.
+    fn solid(m: &Model<Self>) -> Option<&Model<Solid>>;
 }
 
 /// Two dimensions: quadrilaterals (`element::quad`).
@@ -292,6 +296,10 @@ impl Dim for Plane {
     fn plane(m: &Model<Plane>) -> &Model<Plane> {
         m
     }
+
+    fn solid(_: &Model<Plane>) -> Option<&Model<Solid>> {
+        None
+    }
 }
 
 /// The twelve edges of a hexahedron (Gmsh/VTK node order).
@@ -388,5 +396,9 @@ impl Dim for Solid {
 
     fn plane(_: &Model<Solid>) -> &Model<Plane> {
         &EMPTY_PLANE
+    }
+
+    fn solid(m: &Model<Solid>) -> Option<&Model<Solid>> {
+        Some(m)
     }
 }

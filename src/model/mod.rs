@@ -8,6 +8,7 @@ pub mod gmsh;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;
+pub mod surface_contact;
 
 use crate::element::material::Material;
 pub use contact::{
@@ -16,6 +17,7 @@ pub use contact::{
 pub use dim::{AnyModel, Dim, ModelRef, Plane, Solid, SolidKind};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
+pub use surface_contact::{RigidSurface, RigidSurfaceShape, SurfaceMaster, SurfacePair};
 use std::collections::BTreeMap;
 
 /// One element: a quadrilateral in 2D, a hexahedron in 3D (nodes in the kernel's order).
@@ -107,6 +109,8 @@ pub struct Model<S: Dim = Plane> {
     pub loads: Vec<NodalLoad>,
     pub rigid: Vec<RigidBody>,
     pub contacts: Vec<ContactPair>,
+    /// 3D contact pairs (node-to-surface; empty in 2D).
+    pub surface_contacts: Vec<SurfacePair>,
     /// The load–displacement monitors, in scene order (the first is "the" monitor of
     /// summaries, plots and sweeps).
     pub monitors: Vec<Monitor>,
@@ -129,6 +133,7 @@ impl<S: Dim> Default for Model<S> {
             loads: Vec::new(),
             rigid: Vec::new(),
             contacts: Vec::new(),
+            surface_contacts: Vec::new(),
             monitors: Vec::new(),
             notes: Vec::new(),
         }

@@ -304,6 +304,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         loads: Vec::new(),
         rigid: Vec::new(),
         contacts: Vec::new(),
+        surface_contacts: Vec::new(),
         monitors: Vec::new(),
         notes: Vec::new(),
     };
