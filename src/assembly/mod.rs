@@ -6,6 +6,7 @@ pub mod skew;
 pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
+use crate::contact3d::system::SurfaceConfig;
 use crate::element::material::Material;
 use crate::element::quad::ElementError;
 use crate::linalg::chooser::LinearSolve;
@@ -485,9 +486,9 @@ impl<S: Dim> Assembler<S> {
                 &mut self.missing,
                 &self.dofs,
             );
-            contact.evaluate(&cfg, &mut |nodes, r, r_eq, k, positions| {
-                let nd = 2 * nodes.len();
-                let dof = |i: usize| 2 * nodes[i / 2] + i % 2;
+            let mut sink = |dof_ids: &[usize], r: &[f64], r_eq: &[f64], k: &[f64], positions: &[f64]| {
+                let nd = dof_ids.len();
+                let dof = |i: usize| dof_ids[i];
                 for i in 0..nd {
                     r_full[dof(i)] += r[i];
                     r_forces[dof(i)] += r_eq[i] - r[i];
@@ -511,7 +512,12 @@ impl<S: Dim> Assembler<S> {
                         }
                     }
                 }
-            });
+            };
+            contact.evaluate(&cfg, &mut sink);
+            if let Some(solid) = S::solid(model) {
+                let cfg = SurfaceConfig { model: solid, u, t };
+                contact.surface.evaluate(&cfg, &mut sink);
+            }
             self.timings.contact += elements_done.elapsed();
             if self.missing.is_empty() {
                 break;

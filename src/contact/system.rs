@@ -16,6 +16,7 @@ use super::point::{
 };
 use super::search::SegmentGrid;
 use super::transfer::StoredTraction;
+use crate::contact3d::system::SurfaceSystem;
 use crate::model::{ContactPair, Enforcement, Master, Model, Slave, Smoothing};
 
 mod unknowns;
@@ -65,9 +66,11 @@ pub struct ContactSystem {
     /// Points found at the last pairing to have passed through their master (see
     /// [`Self::tunnelled`]), as `(pair, slave)`.
     tunnelled: Vec<(usize, usize)>,
+    /// The 3D (node-to-surface) pairs: empty in 2D (see [`crate::contact3d::system`]).
+    pub surface: SurfaceSystem,
 }
 
-/// Receives one contact point's local contributions: its nodes, the residual of the penalty
+/// Receives one contact point's local contributions: its global DOFs, the residual of the penalty
 /// forces, the residual of the force unknowns, the tangent, and per local DOF the weight of
 /// its coordinate in the round-off of the residual: the slot's position about the point's
 /// own origin (or the fixed geometry's entering the gap where that is larger: see
@@ -257,6 +260,15 @@ impl ContactSystem {
             left: model.contacts.iter().map(|p| vec![None; p.slaves.len()]).collect(),
             multipliers,
             tunnelled: Vec::new(),
+            surface: SurfaceSystem::default(),
+        }
+    }
+
+    /// The contact state of a model of either dimension: its 2D pairs and its 3D ones.
+    pub fn of<S: crate::model::Dim>(model: &crate::model::Model<S>) -> Self {
+        ContactSystem {
+            surface: SurfaceSystem::new(S::solid(model)),
+            ..ContactSystem::new(S::plane(model))
         }
     }
 
@@ -284,10 +296,18 @@ impl ContactSystem {
                 segment: p.segment.filter(|_| state != ContactState::Open),
             }
         }));
+        self.surface.signature_into(out);
     }
 
-    /// Number of slave points over all pairs.
+    /// Number of slave points over all pairs (the 2D pairs' first, as in
+    /// [`Self::signature_into`]).
     pub fn signature_len(&self) -> usize {
+        self.current.iter().map(Vec::len).sum::<usize>() + self.surface.len()
+    }
+
+    /// Number of slave points of the 2D pairs (the first in [`Self::signature_into`];
+    /// [`Self::point_index`] and [`Self::xi`] take these).
+    pub fn plane_len(&self) -> usize {
         self.current.iter().map(Vec::len).sum()
     }
 
@@ -432,7 +452,11 @@ impl ContactSystem {
                         true => rho * problem.x[j / 2][j % 2].abs().max(scale),
                         false => 0.0,
                     });
-                    assemble(slots.nodes(), &r[..nd], &r_eq[..nd], &k[..nd * nd], &weights[..nd]);
+                    let dofs: [usize; 2 * MAX_NODES] = std::array::from_fn(|j| match j < nd {
+                        true => 2 * slots.nodes()[j / 2] + j % 2,
+                        false => 0,
+                    });
+                    assemble(&dofs[..nd], &r[..nd], &r_eq[..nd], &k[..nd * nd], &weights[..nd]);
                 }
                 self.lin[ip][is] = Some((slots, lin));
             }

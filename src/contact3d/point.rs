@@ -9,7 +9,8 @@
 //!
 //! Law, in covariant components on the current facet:
 //! - gap `ζ = (x_s − ρ(ξ))·n` at the closest point `ξ` ([`super::projection`]), normal force
-//!   `N = −ε_N ζ` while positive (closed), else the point is open and carries nothing;
+//!   `N = −ε_N ζ` while `ζ ≤ TOUCH · size` (closed; a touching point is closed with `N = 0`),
+//!   else the point is open and carries nothing;
 //! - stick trial (seed eq. 1): `T_α^tr = T_α^(n) − ε_T a_αβ (ξ^β − ξ^β_(n))` with the
 //!   history `(ξ_(n), T^(n))` of the last converged increment *on this facet* (carried here
 //!   by [`super::transfer`] when the point has changed facet), `a_αβ` at the current `ξ`;
@@ -35,6 +36,13 @@ use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
 use nalgebra::{Const, U1};
 use num_dual::{Dual2SVec64, DualSVec64};
+
+/// A gap within `TOUCH` times the facet's size of zero is touching: the point is closed.
+pub const TOUCH: f64 = 1e-12;
+
+fn projection_gap_re<S: Scalar>(e: &PointEval<S>) -> f64 {
+    e.projection.gap.re()
+}
 
 /// Nodes of one point: the slave and the facet's four.
 pub const NODES: usize = 5;
@@ -107,7 +115,10 @@ impl PointProblem {
             traction: [zero; 2],
             state: ContactState::Open,
         };
-        if normal.re() <= 0.0 {
+        // touching within the geometry's precision counts as closed (the resting side of
+        // the normal kink): a point at zero gap then carries the penalty's stiffness into
+        // the correction, and a correction that lifts it opens it at the next iterate
+        if projection_gap_re(&eval) > TOUCH * facet.size() {
             return Ok(eval);
         }
         eval.normal_force = normal;

@@ -40,6 +40,7 @@ enum Message {
         u: Vec<f64>,
         contact: Vec<Point>,
         crossings: Vec<CrossingRecord>,
+        surface: Vec<super::surface_contact::SurfacePointRecord>,
     },
     Log(LogRecord),
     Finish(Outcome),
@@ -219,6 +220,7 @@ fn write(
                 u,
                 contact,
                 crossings,
+                surface,
             } => match &model {
                 Some(model) => {
                     records.clear();
@@ -230,6 +232,7 @@ fn write(
                             u: &u,
                             contact: &records,
                             crossings: &crossings,
+                            surface: &surface,
                         },
                     )
                 }
@@ -264,6 +267,7 @@ impl Observer for Background {
             u: view.u.to_vec(),
             contact: view.contact.iter().map(Point::of).collect(),
             crossings: view.crossings.to_vec(),
+            surface: view.surface.to_vec(),
         };
         self.send(m, bytes)
     }

@@ -11,6 +11,7 @@ mod observer;
 pub mod pressure;
 pub mod real;
 pub mod rrd;
+pub mod surface_contact;
 pub mod text;
 pub mod vtu;
 
@@ -408,6 +409,8 @@ pub struct StepView<'a> {
     pub u: &'a [f64],
     pub contact: &'a [ContactPointRecord],
     pub crossings: &'a [CrossingRecord],
+    /// The 3D (node-to-surface) points (none in 2D).
+    pub surface: &'a [surface_contact::SurfacePointRecord],
 }
 
 /// An optional [`Real`] (absent when `None`).

@@ -88,6 +88,8 @@ pub struct Memory {
     pub increments: Vec<IncrementRecord>,
     pub contact: Vec<Vec<super::ContactPointRecord>>,
     pub crossings: Vec<(usize, super::CrossingRecord)>,
+    /// The 3D contact points of each increment.
+    pub surface: Vec<Vec<super::surface_contact::SurfacePointRecord>>,
     pub logs: Vec<LogRecord>,
     pub outcome: Option<Outcome>,
     pub final_u: Vec<f64>,
@@ -101,6 +103,7 @@ impl Observer for Memory {
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         self.increments.push(rec.clone());
         self.contact.push(view.contact.to_vec());
+        self.surface.push(view.surface.to_vec());
         self.crossings
             .extend(view.crossings.iter().map(|c| (rec.increment, c.clone())));
         self.final_u = view.u.to_vec();

@@ -114,7 +114,9 @@ impl ActiveSetWatch {
     /// The points that changed in this attempt, those still changing at the end first, then
     /// the most changes (at most `max`): the points to blame are the ones that never settled.
     pub fn report(&self, contact: &ContactSystem, model: &crate::model::Model, max: usize) -> Vec<ChangingPoint> {
-        let mut idx: Vec<usize> = (0..self.now.len()).filter(|&i| self.changes[i] > 0).collect();
+        // the 2D points (3D points are counted in the cycle test, not named here yet)
+        let plane = contact.plane_len().min(self.now.len());
+        let mut idx: Vec<usize> = (0..plane).filter(|&i| self.changes[i] > 0).collect();
         idx.sort_by_key(|&i| {
             (
                 std::cmp::Reverse(self.last_change[i]),

@@ -8,7 +8,8 @@
 //! must vanish: `f` the applied nodal loads at `t` (body forces included: the scene lumps
 //! them into nodal loads), `r` the reactions (the residual at the prescribed DOFs), and
 //! `f_c = N n + T τ` the contact force of each closed point as its snapshot records it
-//! ([`super::monitor::slave_force`]): `+f_c` on the body of a slave node, `−f_c` on the
+//! ([`super::monitor::slave_force`]; in 3D the assembled force of each node-to-surface
+//! point, [`SurfaceSnapshot::force`]): `+f_c` on the body of a slave node, `−f_c` on the
 //! body of a deformable master face (the point's residual is invariant under a translation
 //! of its nodes, so its forces on slave and master sum to zero). Internal forces sum to
 //! zero over a body (translation invariance of the strain energy), so `F_b` is minus the
@@ -30,7 +31,8 @@
 use crate::assembly::Assembler;
 use crate::contact::events::PointSnapshot;
 use crate::contact::law::ContactState;
-use crate::model::{Dim, Master, Model, Slave};
+use crate::contact3d::system::SurfaceSnapshot;
+use crate::model::{Dim, Master, Model, Slave, SurfaceMaster};
 
 /// An imbalance above this (relative to `F_ref`) stops the run: a force was lost between the
 /// assembly and the records. Converged increments of the built-in scenes measure 3.2e-15 to
@@ -59,6 +61,7 @@ pub fn body_resultants<S: Dim>(
     asm: &Assembler<S>,
     t: f64,
     points: &[PointSnapshot],
+    surface: &[SurfaceSnapshot],
 ) -> Vec<[f64; 3]> {
     let mut body_of_node = vec![usize::MAX; model.nodes.len()];
     for (b, body) in model.bodies.iter().enumerate() {
@@ -92,6 +95,24 @@ pub fn body_resultants<S: Dim>(
             }
         }
     }
+    for p in surface
+        .iter()
+        .filter(|p| p.eval.is_some_and(|e| e.state != ContactState::Open))
+    {
+        for c in 0..3 {
+            add(p.node, c, p.force[c]);
+        }
+        let master = S::solid(model)
+            .and_then(|m| m.surface_contacts.get(p.pair))
+            .map(|pair| &pair.master);
+        if let (Some(SurfaceMaster::Facets { facets, .. }), Some(f)) = (master, p.facet) {
+            if let Some(&[a, ..]) = facets.get(f) {
+                for c in 0..3 {
+                    add(a, c, -p.force[c]);
+                }
+            }
+        }
+    }
     if let Some(plane) = (S::D == 2).then(|| model.plane()) {
         for (b, body) in plane.bodies.iter().enumerate() {
             if body.kinematics == crate::element::quad::Kinematics::Axisymmetric {
@@ -109,10 +130,11 @@ pub fn worst_imbalance<S: Dim>(
     asm: &Assembler<S>,
     t: f64,
     points: &[PointSnapshot],
+    surface: &[SurfaceSnapshot],
     fref: f64,
 ) -> Option<Imbalance> {
     let scale = fref.max(NOISE_TO_SCALE * asm.roundoff()).max(f64::MIN_POSITIVE);
-    body_resultants(model, asm, t, points)
+    body_resultants(model, asm, t, points, surface)
         .into_iter()
         .enumerate()
         .map(|(body, r)| Imbalance {
@@ -166,11 +188,11 @@ mod tests {
             s
         });
         assert!(loads[0].hypot(loads[1]) > 0.0);
-        let lone = worst_imbalance(model, &asm, t, &[], 1.0).unwrap();
+        let lone = worst_imbalance(model, &asm, t, &[], &[], 1.0).unwrap();
         assert!((lone.resultant[0] - loads[0]).abs() < 1e-12 && (lone.resultant[1] - loads[1]).abs() < 1e-12);
         let pair = &model.contacts[0];
         let balanced = [closed_point(0, pair.slaves[0], 0, [-loads[0], -loads[1]])];
-        let held = worst_imbalance(model, &asm, t, &balanced, 1.0).unwrap();
+        let held = worst_imbalance(model, &asm, t, &balanced, &[], 1.0).unwrap();
         assert!(held.relative < 1e-12, "{held:?}");
     }
 
@@ -184,7 +206,7 @@ mod tests {
         let pair = &model.contacts[0];
         let f = [0.3, -4.0];
         let points = [closed_point(0, pair.slaves[0], 0, f)];
-        let r = body_resultants(model, &asm, 0.0, &points);
+        let r = body_resultants(model, &asm, 0.0, &points, &[]);
         let Master::Face { body: master, .. } = pair.master else {
             panic!("the patch test's pair has a deformable master")
         };
@@ -194,7 +216,7 @@ mod tests {
         let slave = (model.bodies.iter()).position(|b| (b.first_node..b.first_node + b.node_count).contains(&n));
         assert_eq!(r[slave.unwrap()], [f[0], f[1], 0.0]);
         assert_eq!(r[master], [-f[0], -f[1], 0.0]);
-        let worst = worst_imbalance(model, &asm, 0.0, &points, 2.0).unwrap();
+        let worst = worst_imbalance(model, &asm, 0.0, &points, &[], 2.0).unwrap();
         let scale = 2.0f64.max(NOISE_TO_SCALE * asm.roundoff());
         assert!((worst.relative - f[0].hypot(f[1]) / scale).abs() < 1e-15);
     }

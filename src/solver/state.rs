@@ -26,7 +26,7 @@ impl TrialState {
         TrialState {
             u: vec![0.0; model.dof_count()],
             alphas: vec![0.0; S::ALPHAS * model.elements.len()],
-            contact: ContactSystem::new(model.plane()),
+            contact: ContactSystem::of(model),
         }
     }
 }

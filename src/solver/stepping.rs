@@ -10,7 +10,9 @@ use super::run::{RunSummary, SolveError, UnstableSummary};
 use super::state::TrialState;
 use crate::assembly::Assembler;
 use crate::contact::system::Config;
+use crate::contact3d::system::SurfaceConfig;
 use crate::model::{Dim, Model};
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::{
     ChangingPoint, ContactPointRecord, CrossingRecord, FailureKind, IncrementRecord, LogLevel, LogRecord,
     MonitorRecord, Observer, ObserverError, StepView,
@@ -145,6 +147,9 @@ struct ContactCommit {
     imbalance: Option<Imbalance>,
     /// The time the commit itself took (physics, not recording).
     commit_time: std::time::Duration,
+    /// The 3D contact points, and how many crossed to another facet.
+    surface_points: Vec<SurfacePointRecord>,
+    surface_crossings: usize,
 }
 
 struct ConvergedIncrement {
@@ -203,6 +208,14 @@ impl<'a, S: Dim> Stepping<'a, S> {
             t: 0.0,
         };
         committed.contact.start_from_initial_configuration(&start);
+        if let Some(solid) = S::solid(model) {
+            let start = SurfaceConfig {
+                model: solid,
+                u: &committed.u,
+                t: 0.0,
+            };
+            committed.contact.surface.start_from_initial_configuration(&start);
+        }
         Stepping {
             model,
             settings,
@@ -432,10 +445,12 @@ impl<'a, S: Dim> Stepping<'a, S> {
             crossings,
             imbalance,
             commit_time,
+            surface_points,
+            surface_crossings,
         } = self.commit_contact();
         self.check_equilibrium(imbalance)?;
         self.check_penetration(&points, obs)?;
-        self.summary.crossings += crossings.len();
+        self.summary.crossings += crossings.len() + surface_crossings;
         self.report_history_jumps(&crossings, obs)?;
         self.summary.on_extension += usize::from(done.on_extension > 0);
         self.summary.line_search_failures += done.conv.line_search_failures;
@@ -450,6 +465,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
             u: &self.committed.u,
             contact: &points,
             crossings: &crossings,
+            surface: &surface_points,
         };
         obs.increment(&rec, &view)?;
         self.recording += handed.elapsed().saturating_sub(commit_time);
@@ -513,10 +529,25 @@ impl<'a, S: Dim> Stepping<'a, S> {
         let points: Vec<ContactPointRecord> = (snapshots.iter())
             .map(|p| ContactPointRecord::from_snapshot(&self.labels, p))
             .collect();
+        let solid = S::solid(self.model).map(|model| SurfaceConfig {
+            model,
+            u: &self.committed.u,
+            t: self.t,
+        });
+        let surface = solid
+            .as_ref()
+            .map_or(Vec::new(), |c| self.committed.contact.surface.snapshots(c));
+        let surface_points = (solid.as_ref().zip(Some(&surface))).map_or(Vec::new(), |(c, s)| {
+            s.iter()
+                .map(|p| SurfacePointRecord::of(c.model, &self.committed.u, p))
+                .collect()
+        });
         let monitors = super::monitor::records(self.model, &self.asm, &self.committed.u, self.t, &snapshots);
-        let imbalance = super::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, self.fref);
+        let imbalance =
+            super::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, &surface, self.fref);
         let committing = Instant::now();
         let events = self.committed.contact.commit(&cfg);
+        let surface_crossings = self.committed.contact.surface.commit();
         let commit_time = committing.elapsed();
         let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
         ContactCommit {
@@ -525,6 +556,8 @@ impl<'a, S: Dim> Stepping<'a, S> {
             crossings,
             imbalance,
             commit_time,
+            surface_points,
+            surface_crossings,
         }
     }
 

@@ -32,6 +32,7 @@ impl ContactSystem {
             pair.iter_mut().for_each(|p| *p = PointNow::default());
         }
         self.grids.iter_mut().for_each(|g| *g = None);
+        self.surface.reset_current();
         self.left.iter_mut().flatten().for_each(|l| *l = None);
         self.penalty_rule = false;
         self.kink = Kink::Open;
@@ -162,6 +163,7 @@ impl ContactSystem {
         self.complementarity2 = other.complementarity2;
         self.tunnelled.clear();
         self.tunnelled.extend_from_slice(&other.tunnelled);
+        self.surface.copy_iterate_from(&other.surface);
     }
 
     /// Keep the evaluation of the iterate and its force unknowns: the start of a
@@ -173,6 +175,7 @@ impl ContactSystem {
         for (b, f) in self.forces_base.iter_mut().zip(&self.forces) {
             b.copy_from_slice(f);
         }
+        self.surface.save_iterate();
     }
 
     /// The force unknowns at the full correction `du` (global DOFs, zero where prescribed):
@@ -270,6 +273,7 @@ impl ContactSystem {
         for (c, b) in self.current.iter_mut().zip(&self.current_base) {
             c.copy_from_slice(b);
         }
+        self.surface.restore_iterate();
         for ((f, b), st) in self.forces.iter_mut().zip(&self.forces_base).zip(&self.forces_step) {
             for ((f, b), st) in f.iter_mut().zip(b).zip(st) {
                 *f = Forces {

@@ -1,0 +1,195 @@
+//! One 3D contact point against its master, in the form the system assembles: the local
+//! problem of a slave node and a facet of a deformable face (15 DOFs, [`super::point`]), of a
+//! slave node and a rigid plane (the plane as a fixed bilinear facet, the slave's 3 DOFs
+//! kept), or of a slave node and a rigid sphere (closed form, 3 DOFs, frictionless).
+//!
+//! Every position is taken about the slave's reference position (its own origin), as in 2D:
+//! gaps and convective coordinates are differences of nearby points, computed from the same
+//! digits wherever the model sits.
+
+use super::point::{History, PointEval, PointProblem, DOFS};
+use super::projection::{Location, Projection, ProjectionError};
+use super::surface::{Facet, FacetPoint};
+use super::vec3::{add, cross, dot, norm, scale, sub, V3};
+use crate::contact::law::ContactState;
+use crate::model::{ContactLaw, RigidSurfaceShape};
+
+/// The four corners of a rigid plane as a fixed bilinear facet about `origin`: the square
+/// of half-width `half` centred on the plane's reference point, moved by `offset`, its
+/// nodes counter-clockwise seen from the side `normal` points to (`ρ_1 × ρ_2 ∥ n`). The
+/// square is fixed in the plane's frame, so convective coordinates (and a stick anchor) keep
+/// their meaning from increment to increment; `half` is larger than the model, so every
+/// slave projects inside.
+pub fn plane_facet(point: [f64; 3], normal: [f64; 3], half: f64, offset: [f64; 3], origin: [f64; 3]) -> [[f64; 3]; 4] {
+    let [e1, e2] = plane_axes(normal);
+    let centre = add(sub(point, origin), offset);
+    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(a, b)| add(centre, add(scale(e1, a * half), scale(e2, b * half))))
+}
+
+/// Unit axes `e_1, e_2` of a plane with unit normal `n`, `e_1 × e_2 = n`.
+pub fn plane_axes(n: [f64; 3]) -> [[f64; 3]; 2] {
+    let pick = if n[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let e1 = sub(pick, scale(n, dot(pick, n)));
+    let e1 = scale(e1, 1.0 / norm(e1));
+    [e1, cross(n, e1)]
+}
+
+/// Residual `r` (3 DOFs of the slave) and tangent `k` (3×3) of a slave at `x` (about its
+/// origin) against the rigid sphere `centre` (about the origin, moved), `radius`:
+/// `ζ = |x − c| − R`, `n = (x − c)/|x − c|`, `N = ε_N ⟨−ζ⟩`, `r = −N n`,
+/// `k = ε_N n nᵀ − N (I − n nᵀ)/|x − c|` while closed (both zero when open). Frictionless.
+pub fn sphere_point(
+    law: &ContactLaw,
+    x: [f64; 3],
+    centre: [f64; 3],
+    radius: f64,
+    r: &mut [f64; 3],
+    k: &mut [f64; 9],
+) -> PointEval<f64> {
+    let d = sub(x, centre);
+    let dist = norm(d);
+    let n = scale(d, 1.0 / dist);
+    let gap = dist - radius;
+    let [t1, t2] = plane_axes(n);
+    let identity = [[1.0, 0.0], [0.0, 1.0]];
+    let point = FacetPoint {
+        xi: [0.0, 0.0],
+        rho: add(centre, scale(n, radius)),
+        tangents: [t1, t2],
+        metric: identity,
+        inverse: identity,
+        normal: n,
+        curvature: [[0.0; 2]; 2],
+    };
+    let closed = gap <= super::point::TOUCH * radius;
+    let normal_force = if closed { -law.eps_n * gap } else { 0.0 };
+    r.fill(0.0);
+    k.fill(0.0);
+    if closed {
+        for i in 0..3 {
+            r[i] = -normal_force * n[i];
+            for j in 0..3 {
+                let delta = if i == j { 1.0 } else { 0.0 };
+                k[3 * i + j] = law.eps_n * n[i] * n[j] - normal_force * (delta - n[i] * n[j]) / dist;
+            }
+        }
+    }
+    PointEval {
+        projection: Projection {
+            point,
+            gap,
+            location: Location::Inside,
+            iterations: 0,
+        },
+        normal_force,
+        trial: [0.0; 2],
+        traction: [0.0; 2],
+        state: if closed { ContactState::Slip } else { ContactState::Open },
+    }
+}
+
+/// The slave's 3×3 block of a 15-DOF point tangent and its 3 residual entries (a rigid
+/// facet: nodes 1–4 do not move).
+pub fn slave_block(r: &[f64; DOFS], k: &[f64; DOFS * DOFS], rs: &mut [f64; 3], ks: &mut [f64; 9]) {
+    for i in 0..3 {
+        rs[i] = r[i];
+        for j in 0..3 {
+            ks[3 * i + j] = k[DOFS * i + j];
+        }
+    }
+}
+
+/// Evaluate the facet kernel: slave `x_s` and facet corners `facet` (about the slave's
+/// origin), the history transferred to this facet.
+pub fn facet_point(
+    law: ContactLaw,
+    x_s: [f64; 3],
+    facet: [[f64; 3]; 4],
+    history: Option<History>,
+    r: &mut [f64; DOFS],
+    k: &mut [f64; DOFS * DOFS],
+) -> Result<PointEval<f64>, ProjectionError> {
+    let mut problem = PointProblem::new(law, [x_s, facet[0], facet[1], facet[2], facet[3]]);
+    problem.history = history;
+    problem.residual_tangent(r, k)
+}
+
+/// The rigid surface's reference point moved by `offset`, about `origin`.
+pub fn rigid_centre(shape: &RigidSurfaceShape, offset: [f64; 3], origin: [f64; 3]) -> V3<f64> {
+    let at = match shape {
+        RigidSurfaceShape::Plane { point, .. } => *point,
+        RigidSurfaceShape::Sphere { centre, .. } => *centre,
+    };
+    add(sub(at, origin), offset)
+}
+
+/// A facet of plain coordinates.
+pub fn facet_of(x: [[f64; 3]; 4]) -> Facet<f64> {
+    Facet { x }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sphere_tangent_is_the_derivative_of_its_residual() {
+        let law = ContactLaw {
+            eps_n: 1e3,
+            eps_t: 0.0,
+            mu: 0.0,
+        };
+        let c = [0.1, -0.2, 1.0];
+        let x = [0.05, 0.02, 0.05];
+        let (mut r, mut k) = ([0.0; 3], [0.0; 9]);
+        let e = sphere_point(&law, x, c, 1.0, &mut r, &mut k);
+        assert_eq!(e.state, ContactState::Slip);
+        let h = 1e-7;
+        for j in 0..3 {
+            let (mut rp, mut rm, mut kk) = ([0.0; 3], [0.0; 3], [0.0; 9]);
+            let mut xp = x;
+            xp[j] += h;
+            sphere_point(&law, xp, c, 1.0, &mut rp, &mut kk);
+            let mut xm = x;
+            xm[j] -= h;
+            sphere_point(&law, xm, c, 1.0, &mut rm, &mut kk);
+            for i in 0..3 {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                assert!(
+                    (fd - k[3 * i + j]).abs() <= 1e-6 * law.eps_n,
+                    "k[{i}{j}] {} vs {fd}",
+                    k[3 * i + j]
+                );
+            }
+        }
+        // the force on the slave points out of the sphere
+        let out = sub(x, c);
+        assert!(dot(scale(r, -1.0), out) > 0.0);
+    }
+
+    #[test]
+    fn a_plane_facet_has_the_plane_normal_and_projects_the_point_inside() {
+        let n = [0.0, 0.6, 0.8];
+        let f = plane_facet([1.0, 2.0, 3.0], n, 10.0, [0.0, 0.0, 0.5], [1.0, 2.0, 3.0]);
+        let p = facet_of(f).point([0.3, -0.2]).unwrap();
+        for c in 0..3 {
+            assert!((p.normal[c] - n[c]).abs() < 1e-14);
+        }
+        let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
+        let law = ContactLaw {
+            eps_n: 1.0,
+            eps_t: 0.0,
+            mu: 0.0,
+        };
+        let e = facet_point(law, [0.2, 0.1, 0.3], f, None, &mut r, &mut k).unwrap();
+        assert_eq!(e.projection.location, Location::Inside);
+        // the offset moved the plane by 0.5 along z: gap = (x − c)·n
+        let gap = dot(sub([0.2, 0.1, 0.3], [0.0, 0.0, 0.5]), n);
+        assert!((e.projection.gap - gap).abs() < 1e-14);
+    }
+}
