@@ -16,6 +16,7 @@ pub mod monitors;
 mod overclosure;
 mod overrides;
 pub mod pressure;
+pub mod rigid_spec;
 pub mod types;
 pub mod validate;
 
