@@ -7,6 +7,7 @@ mod body_model;
 mod build;
 pub mod build_pairs;
 pub mod build_solid;
+pub mod build_surface_pairs;
 pub mod builtin;
 pub mod fillet;
 pub mod initial_contact;
