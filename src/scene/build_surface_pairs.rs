@@ -15,7 +15,7 @@
 //!   convex vertices of a rigid outline; slave nodes moved onto a deformable master): their
 //!   values are not used in 3D.
 //! - A slave node that starts inside a rigid plane or sphere is refused
-//!   ([`refuse_rigid_overclosures`]); against a deformable face the initial overclosure is
+//!   (`refuse_rigid_overclosures`); against a deformable face the initial overclosure is
 //!   not checked yet.
 
 use super::build::{body_index, contact_law, motion_ramp, Ctx};
