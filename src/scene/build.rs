@@ -48,6 +48,11 @@ pub(super) fn ramp(spec: &RampSpec, end: f64) -> Ramp {
     }
 }
 
+/// The history of one component of a rigid body's `move` (none: it stays), in 2D and 3D.
+pub(super) fn motion_ramp(spec: &Option<RampSpec>, end: f64) -> Ramp {
+    spec.as_ref().map_or(Ramp::constant(0.0), |x| ramp(x, end))
+}
+
 fn comp(c: Component) -> usize {
     match c {
         Component::X => 0,
@@ -140,37 +145,6 @@ fn rigid_index<S: Dim>(cx: &Ctx, model: &Model<S>, name: &str) -> Result<usize, 
             &format!("known rigid bodies: {}", known.join(", ")),
         )
     })
-}
-
-/// Consistent nodal forces of a dead body load, summed per DOF, as nodal loads.
-fn body_load(cx: &Ctx, m: &mut Model, bl: &BodyLoadSpec, end: f64) -> Result<(), SceneError> {
-    let bi = body_index(cx, m, &bl.body)?;
-    if !bl.force.iter().all(|v| v.is_finite()) {
-        return Err(cx.err(
-            &bl.body,
-            format!("body_load on `{}`: force {:?} is not finite", bl.body, bl.force),
-            "give a finite force per unit volume [bx, by]",
-        ));
-    }
-    let factor = bl.factor.as_ref().map_or(Ramp::linear(1.0, end), |f| ramp(f, end));
-    let mut total = std::collections::BTreeMap::<usize, f64>::new();
-    let mut f = [0.0; 8];
-    for e in m.elements.iter().filter(|e| e.body == bi) {
-        let x = e.nodes.map(|n| m.nodes[n]);
-        let kinematics = m.bodies[bi].kinematics;
-        crate::element::body_force::quad_body_force_with(&x, bl.force, kinematics, &mut f);
-        for (i, &n) in e.nodes.iter().enumerate() {
-            for c in 0..2 {
-                *total.entry(2 * n + c).or_default() += f[2 * i + c];
-            }
-        }
-    }
-    for (dof, value) in total.into_iter().filter(|(_, v)| *v != 0.0) {
-        let mut r = factor.clone();
-        r.knots.iter_mut().for_each(|k| k.1 *= value);
-        m.loads.push(NodalLoad { dof, ramp: r });
-    }
-    Ok(())
 }
 
 fn arc_piece(a: &ArcSpec) -> Piece {
@@ -448,9 +422,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         }
         _ => return Err(bad("invalid master")),
     };
-    if c.eps_n <= 0.0 || c.eps_t < 0.0 || c.mu < 0.0 || (c.mu > 0.0 && c.eps_t <= 0.0) {
-        return Err(bad("need eps_n > 0, mu ≥ 0, and eps_t > 0 when mu > 0"));
-    }
+    let law = contact_law(cx, c)?;
     let smoothing = c.master_smoothing.unwrap_or(match master {
         Master::Face { .. } => Smoothing::None,
         Master::Rigid { .. } => Smoothing::Hermite,
@@ -459,17 +431,32 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         name: c.name.clone(),
         slaves,
         master,
-        law: ContactLaw {
-            eps_n: c.eps_n,
-            eps_t: c.eps_t,
-            mu: c.mu,
-        },
+        law,
         transfer: c.transfer,
         search_radius: c.search_radius.unwrap_or(2.0 * h),
         owned_vertices: Vec::new(),
         weights: Vec::new(),
         smoothing,
         enforcement: enforcement(cx, c)?,
+    })
+}
+
+/// The law of a pair (2D or 3D): `eps_n > 0`, `mu ≥ 0`, and `eps_t > 0` when `mu > 0`.
+pub(super) fn contact_law(cx: &Ctx, c: &ContactSpec) -> Result<ContactLaw, SceneError> {
+    if c.eps_n <= 0.0 || c.eps_t < 0.0 || c.mu < 0.0 || (c.mu > 0.0 && c.eps_t <= 0.0) {
+        return Err(cx.err(
+            &c.name,
+            format!(
+                "contact `{}`: need eps_n > 0, mu ≥ 0, and eps_t > 0 when mu > 0",
+                c.name
+            ),
+            "give e.g. eps_n = 1e4, and eps_t > 0 with mu > 0 (mu = 0: frictionless)",
+        ));
+    }
+    Ok(ContactLaw {
+        eps_n: c.eps_n,
+        eps_t: c.eps_t,
+        mu: c.mu,
     })
 }
 

@@ -1,8 +1,9 @@
 //! A scene of 3D bodies (`mesh = { kind = "box", … }`) resolved into a [`Model<Solid>`]: the
 //! bodies' hexahedral meshes, then the same fixes, loads and monitors as in 2D
-//! (`build_steps.rs`, generic over the dimension). What 3D does not have yet — rigid bodies,
-//! contact pairs, pressures, body loads, skew supports, the 2D body models — is refused,
-//! naming the missing feature.
+//! (`build_steps.rs`, generic over the dimension), the rigid planes and spheres and the
+//! contact pairs (`build_surface_pairs.rs`). What 3D does not have yet — pressures, body
+//! loads, skew supports, rigid-body monitors, the 2D body models — is refused, naming the
+//! missing feature.
 
 use super::build::Ctx;
 use super::types::{BodyModel, MeshSpec, SceneFile};
@@ -38,6 +39,9 @@ pub fn build_solid(src: &SceneSource, s: &SceneFile) -> Result<Problem<Solid>, S
     add_solid_bodies(&cx, src, s, &mut m)?;
     super::build::steps::add_fixes(&cx, s, &mut m, end)?;
     super::build::steps::add_loads(&cx, s, &mut m, end)?;
+    let rigid = super::build_surface_pairs::rigid_surfaces(&cx, s, end)?;
+    super::build_surface_pairs::add_surface_contacts(&cx, s, &mut m, &rigid)?;
+    super::build_surface_pairs::refuse_rigid_overclosures(&cx, &m)?;
     super::build::steps::add_monitors(&cx, s, &mut m)?;
     Ok(Problem {
         model: m,
@@ -54,14 +58,14 @@ fn refuse_2d_only(cx: &Ctx, s: &SceneFile) -> Result<(), SceneError> {
         cx.err(
             near,
             format!("this scene has 3D bodies (a `box` mesh) and {what}: not in contrail's 3D models yet"),
-            "3D contact, rigid bodies and surface loads come in a later slice of issue 33; remove them, or mesh the bodies in 2D",
+            "surface loads and rigid-body monitors come in a later slice of issue 33; remove them, or mesh the bodies in 2D",
         )
     };
-    if let Some(c) = s.contacts.first() {
-        return Err(missing(&c.name, "contact pairs ([[contact]]): 3D contact"));
-    }
-    if let Some(r) = s.rigid.first() {
-        return Err(missing(&r.name, "rigid bodies ([[rigid]])"));
+    if let Some(mon) = s.monitors.iter().find(|m| m.rigid.is_some()) {
+        return Err(missing(
+            &mon.label,
+            "a monitor of a rigid body (`rigid` in [[monitor]])",
+        ));
     }
     if !s.pressures.is_empty() {
         return Err(missing("pressure", "pressures ([[pressure]])"));

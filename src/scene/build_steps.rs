@@ -181,18 +181,68 @@ pub(super) fn add_body_loads(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -
     Ok(())
 }
 
-/// The rigid bodies: shape and motion.
+/// Consistent nodal forces of a dead body load, summed per DOF, as nodal loads.
+fn body_load(cx: &Ctx, m: &mut Model, bl: &BodyLoadSpec, end: f64) -> Result<(), SceneError> {
+    let bi = body_index(cx, m, &bl.body)?;
+    if !bl.force.iter().all(|v| v.is_finite()) {
+        return Err(cx.err(
+            &bl.body,
+            format!("body_load on `{}`: force {:?} is not finite", bl.body, bl.force),
+            "give a finite force per unit volume [bx, by]",
+        ));
+    }
+    let factor = bl.factor.as_ref().map_or(Ramp::linear(1.0, end), |f| ramp(f, end));
+    let mut total = std::collections::BTreeMap::<usize, f64>::new();
+    let mut f = [0.0; 8];
+    for e in m.elements.iter().filter(|e| e.body == bi) {
+        let x = e.nodes.map(|n| m.nodes[n]);
+        let kinematics = m.bodies[bi].kinematics;
+        crate::element::body_force::quad_body_force_with(&x, bl.force, kinematics, &mut f);
+        for (i, &n) in e.nodes.iter().enumerate() {
+            for c in 0..2 {
+                *total.entry(2 * n + c).or_default() += f[2 * i + c];
+            }
+        }
+    }
+    for (dof, value) in total.into_iter().filter(|(_, v)| *v != 0.0) {
+        let mut r = factor.clone();
+        r.knots.iter_mut().for_each(|k| k.1 *= value);
+        m.loads.push(NodalLoad { dof, ramp: r });
+    }
+    Ok(())
+}
+
+/// The rigid bodies: shape and motion (the 3D keys `plane`, `sphere`, `move.z` refused).
 pub(super) fn add_rigid(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
     for r in &s.rigid {
+        refuse_3d_rigid(cx, r)?;
         let shape = rigid_shape(cx, r)?;
-        let mv = |o: &Option<RampSpec>| o.as_ref().map_or(Ramp::constant(0.0), |x| ramp(x, end));
         m.rigid.push(RigidBody {
             name: r.name.clone(),
             shape,
-            motion: [mv(&r.motion.x), mv(&r.motion.y)],
+            motion: [motion_ramp(&r.motion.x, end), motion_ramp(&r.motion.y, end)],
         });
     }
     Ok(())
+}
+
+/// A 2D scene's rigid body with a 3D key (`plane`, `sphere`, `move.z`) is refused.
+fn refuse_3d_rigid(cx: &Ctx, r: &RigidSpec) -> Result<(), SceneError> {
+    let key = [
+        ("plane", r.plane.is_some()),
+        ("sphere", r.sphere.is_some()),
+        ("move.z", r.motion.z.is_some()),
+    ]
+    .into_iter()
+    .find_map(|(k, given)| given.then_some(k));
+    match key {
+        Some(k) => Err(cx.err(
+            &r.name,
+            format!("rigid body `{}`: `{k}` is a 3D rigid surface in a 2D scene", r.name),
+            "a 2D rigid body is a point, polyline, arc, outline or polygon moved in x and y; `plane`, `sphere` and `move.z` need 3D bodies (a `box` or `gmsh-3d` mesh)",
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The contact pairs of the scene, then the pairs they imply (second passes, the vertices of

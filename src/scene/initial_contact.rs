@@ -126,15 +126,19 @@ pub(super) fn refuse_initial_overlaps(cx: &Ctx, m: &Model, s: &SceneFile) -> Res
     ))
 }
 
-pub(super) fn model_size(m: &Model) -> f64 {
-    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+/// Diagonal of the bounding box of the model's nodes (1 for an empty or degenerate model).
+pub(super) fn model_size<S: crate::model::Dim>(m: &Model<S>) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
     for x in &m.nodes {
-        for c in 0..2 {
-            lo[c] = lo[c].min(x[c]);
-            hi[c] = hi[c].max(x[c]);
+        for c in 0..S::D {
+            lo[c] = lo[c].min(x.as_ref()[c]);
+            hi[c] = hi[c].max(x.as_ref()[c]);
         }
     }
-    let l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let mut l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    if S::D == 3 {
+        l = l.hypot(hi[2] - lo[2]);
+    }
     if l.is_finite() && l > 0.0 {
         l
     } else {

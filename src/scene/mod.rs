@@ -7,6 +7,7 @@ mod body_model;
 mod build;
 pub mod build_pairs;
 pub mod build_solid;
+pub mod build_surface_pairs;
 pub mod builtin;
 pub mod fillet;
 pub mod initial_contact;
@@ -16,6 +17,7 @@ pub mod monitors;
 mod overclosure;
 mod overrides;
 pub mod pressure;
+pub mod rigid_spec;
 pub mod types;
 pub mod validate;
 

@@ -1,9 +1,10 @@
 //! Checks of the `rigid` tables: exactly one shape; polylines, arcs and the pieces of a
 //! composite outline well formed; an outline's pieces joined end to end; arc sides that agree
-//! with the orientation.
+//! with the orientation; a 3D plane's and sphere's numbers finite, a plane's normal not zero,
+//! a sphere's radius positive.
 
 use super::{named, sub, Check, Extent, P, R};
-use crate::scene::types::{ArcSide, ArcSpec, PieceSpec, PolygonSpec, RigidSpec};
+use crate::scene::types::{ArcSide, ArcSpec, PieceSpec, PlaneSpec, PolygonSpec, RigidSpec, SphereSpec};
 
 /// Relative tolerance on the joints of an outline (of the outline's size).
 pub const JOINT_TOL: f64 = 1e-9;
@@ -26,11 +27,53 @@ pub(super) fn check(c: &Check, i: usize, r: &RigidSpec, ext: &mut Extent) -> R {
     if let Some(poly) = &r.polygon {
         polygon(c, &sub(&p, "polygon"), &format!("{key}.polygon"), poly, ext)?;
     }
-    for (k, m) in [("x", &r.motion.x), ("y", &r.motion.y)] {
+    if let Some(pl) = &r.plane {
+        plane(c, &sub(&p, "plane"), &format!("{key}.plane"), pl, ext)?;
+    }
+    if let Some(sp) = &r.sphere {
+        sphere(c, &sub(&p, "sphere"), &format!("{key}.sphere"), sp, ext)?;
+    }
+    for (k, m) in [("x", &r.motion.x), ("y", &r.motion.y), ("z", &r.motion.z)] {
         if let Some(m) = m {
             c.ramp(&sub(&sub(&p, "move"), k), &format!("{key}.move.{k}"), m, ext)?;
         }
     }
+    Ok(())
+}
+
+/// A 3D point: finite coordinates, its reach added to the extent.
+fn point3(c: &Check, path: &[P], key: &str, p: [f64; 3], ext: &mut Extent) -> R {
+    for (k, x) in p.iter().enumerate() {
+        c.finite(path, &format!("{key}[{k}]"), *x)?;
+        ext.add(x.abs());
+    }
+    Ok(())
+}
+
+/// A rigid plane: a finite point, a finite normal that is not zero.
+fn plane(c: &Check, pp: &[P], key: &str, pl: &PlaneSpec, ext: &mut Extent) -> R {
+    point3(c, &sub(pp, "point"), &format!("{key}.point"), pl.point, ext)?;
+    let np = sub(pp, "normal");
+    for (k, x) in pl.normal.iter().enumerate() {
+        c.finite(&np, &format!("{key}.normal[{k}]"), *x)?;
+    }
+    if pl.normal.iter().all(|x| *x == 0.0) {
+        return Err(c.fail(
+            &np,
+            &format!("{key}.normal"),
+            format!("{:?}", pl.normal),
+            "a plane's normal must not be zero (it is made unit)",
+            "give the outward normal, pointing from the rigid body towards the slaves, e.g. [0, 0, 1]",
+        ));
+    }
+    Ok(())
+}
+
+/// A rigid sphere: a finite centre, a positive radius.
+fn sphere(c: &Check, sp: &[P], key: &str, s: &SphereSpec, ext: &mut Extent) -> R {
+    point3(c, &sub(sp, "centre"), &format!("{key}.centre"), s.centre, ext)?;
+    c.positive(&sub(sp, "radius"), &format!("{key}.radius"), s.radius)?;
+    ext.add(s.centre.iter().fold(0.0f64, |a, x| a.max(x.abs())) + s.radius);
     Ok(())
 }
 
