@@ -66,6 +66,7 @@ fn replay(t: &Tape, opts: McapOptions) -> (f64, usize) {
                     u,
                     contact: c,
                     crossings: x,
+                    surface: &[],
                 },
             )
             .unwrap();

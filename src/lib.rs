@@ -68,7 +68,11 @@ pub fn run_info<S: model::Dim>(
         overrides: sets.to_vec(),
         crate_version: VERSION.to_string(),
         git_revision: GIT_REVISION.to_string(),
-        transfer: model.contacts.iter().map(|c| c.transfer.name().to_string()).collect(),
+        transfer: (model.contacts.iter().map(|c| c.transfer.name().to_string()))
+            .chain(S::solid(model).into_iter().flat_map(|m| {
+                (m.surface_contacts.iter()).map(|c| contact3d::transfer::scheme_name(c.transfer).to_string())
+            }))
+            .collect(),
         dofs: model.dof_count(),
         free_dofs: asm_free,
         settings: problem.settings.clone(),

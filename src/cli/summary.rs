@@ -22,6 +22,8 @@ pub struct Tracker {
     pub increments: usize,
     pub last: Option<IncrementRecord>,
     pub contact: Vec<ContactPointRecord>,
+    /// 3D contact points at the last increment: closed, and all.
+    pub surface: (usize, usize),
     pub crossings: usize,
     /// The last crossing: increment, point, from and to segment.
     pub last_crossing: Option<(usize, String, usize, usize)>,
@@ -82,6 +84,8 @@ impl Observer for Tracker {
         }
         self.last = Some(rec.clone());
         self.contact = view.contact.to_vec();
+        let closed = view.surface.iter().filter(|p| p.state != ContactState::Open).count();
+        self.surface = (closed, view.surface.len());
         Ok(())
     }
 }
@@ -165,6 +169,14 @@ pub fn progress_lines(o: &mut String, t: &Tracker) {
             o,
             "in contact",
             format!("{closed} of {} contact points at the last increment", t.contact.len()),
+        );
+    }
+    if t.surface.1 > 0 {
+        let (closed, all) = t.surface;
+        row(
+            o,
+            "in contact",
+            format!("{closed} of {all} 3D contact points at the last increment"),
         );
     }
     for p in involved(&t.contact) {

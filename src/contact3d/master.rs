@@ -177,8 +177,8 @@ mod tests {
         let n = [0.0, 0.6, 0.8];
         let f = plane_facet([1.0, 2.0, 3.0], n, 10.0, [0.0, 0.0, 0.5], [1.0, 2.0, 3.0]);
         let p = facet_of(f).point([0.3, -0.2]).unwrap();
-        for c in 0..3 {
-            assert!((p.normal[c] - n[c]).abs() < 1e-14);
+        for (got, want) in p.normal.iter().zip(n) {
+            assert!((got - want).abs() < 1e-14);
         }
         let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
         let law = ContactLaw {

@@ -49,6 +49,16 @@ pub enum Scheme {
     PathLength,
 }
 
+/// The scene's name of a scheme (`transfer = "…"`).
+pub fn scheme_name(scheme: Scheme) -> &'static str {
+    match scheme {
+        Scheme::Straightforward => "straightforward",
+        Scheme::Continuous => "continuous",
+        Scheme::ContinuousProjected => "continuous-projected",
+        Scheme::PathLength => "path-length",
+    }
+}
+
 /// Why a history could not be transferred.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum TransferError {
