@@ -317,77 +317,105 @@ fn evaluate_point(
     plane_half: f64,
     assemble: &mut LocalSink,
 ) -> SurfaceNow {
+    match &pair.master {
+        SurfaceMaster::Facets { facets, .. } => {
+            let grid = grid.expect("a facet master has a grid");
+            on_facets(cfg, pair, is, hist, facets, (grid, start), assemble)
+        }
+        SurfaceMaster::Rigid(rigid) => on_rigid(cfg, pair, is, hist, rigid, plane_half, assemble),
+    }
+}
+
+/// Slave `is` against the facets of a deformable face: located (from `start`), its history
+/// carried onto the facet it is on now, evaluated, and assembled on its 5 nodes when closed.
+fn on_facets(
+    cfg: &SurfaceConfig,
+    pair: &SurfacePair,
+    is: usize,
+    hist: &SurfaceHistory,
+    facets: &[[usize; 4]],
+    (grid, start): (&FacetGrid, Option<usize>),
+    assemble: &mut LocalSink,
+) -> SurfaceNow {
+    let node = pair.slaves[is];
+    let origin = cfg.model.nodes[node];
+    let mut now = SurfaceNow::default();
+    let Some(f) = locate(cfg, facets, grid, cfg.node(node), start, pair.search_radius) else {
+        return now;
+    };
+    now.facet = Some(f);
+    let facet_b = cfg.facet_about(&facets[f], origin);
+    let carried = match (hist.history.filter(|_| hist.closed), hist.facet) {
+        (Some(h), Some(a)) if a != f => {
+            now.transferred = true;
+            let facet_a = cfg.facet_about(&facets[a], origin);
+            transfer(pair.transfer, &facet_of(facet_a), &h, &facet_of(facet_b)).ok()
+        }
+        (h, _) => h,
+    };
+    let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
+    let x_s = cfg.node_about(node, origin);
+    let Ok(e) = facet_point(pair.law_of(is), x_s, facet_b, carried, &mut r, &mut k) else {
+        now.facet = None;
+        return now;
+    };
+    now.eval = Some(in_model_coordinates(e, origin));
+    if e.state != ContactState::Open {
+        let nodes = [node, facets[f][0], facets[f][1], facets[f][2], facets[f][3]];
+        let dofs: [usize; DOFS] = std::array::from_fn(|i| 3 * nodes[i / 3] + i % 3);
+        let locals = [x_s, facet_b[0], facet_b[1], facet_b[2], facet_b[3]];
+        let weights: [f64; DOFS] = std::array::from_fn(|j| locals[j / 3][j % 3].abs());
+        now.force = [-r[0], -r[1], -r[2]];
+        assemble(&dofs, &r, &r, &k, &weights);
+    }
+    now
+}
+
+/// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel)
+/// or a rigid sphere; assembled on the slave's 3 DOFs when closed.
+fn on_rigid(
+    cfg: &SurfaceConfig,
+    pair: &SurfacePair,
+    is: usize,
+    hist: &SurfaceHistory,
+    rigid: &crate::model::RigidSurface,
+    plane_half: f64,
+    assemble: &mut LocalSink,
+) -> SurfaceNow {
     let node = pair.slaves[is];
     let origin = cfg.model.nodes[node];
     let x_s = cfg.node_about(node, origin);
     let law = pair.law_of(is);
-    let history = hist.history.filter(|_| hist.closed);
     let mut now = SurfaceNow::default();
-    let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
-    match &pair.master {
-        SurfaceMaster::Facets { facets, .. } => {
-            let grid = grid.expect("a facet master has a grid");
-            let Some(f) = locate(cfg, facets, grid, cfg.node(node), start, pair.search_radius) else {
+    let offset = rigid.offset(cfg.t);
+    let centre = rigid_centre(&rigid.shape, offset, origin);
+    let (mut rs, mut ks) = ([0.0; 3], [0.0; 9]);
+    let (e, scale) = match rigid.shape {
+        RigidSurfaceShape::Plane { point, normal } => {
+            let facet = plane_facet(point, normal, plane_half, offset, origin);
+            let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
+            let history = hist.history.filter(|_| hist.closed);
+            let Ok(e) = facet_point(law, x_s, facet, history, &mut r, &mut k) else {
                 return now;
             };
-            now.facet = Some(f);
-            let facet_b = cfg.facet_about(&facets[f], origin);
-            let carried = match (history, hist.facet) {
-                (Some(h), Some(a)) if a != f => {
-                    now.transferred = true;
-                    let facet_a = cfg.facet_about(&facets[a], origin);
-                    transfer(pair.transfer, &facet_of(facet_a), &h, &facet_of(facet_b)).ok()
-                }
-                (h, _) => h,
-            };
-            let Ok(e) = facet_point(law, x_s, facet_b, carried, &mut r, &mut k) else {
-                now.facet = None;
-                return now;
-            };
-            now.eval = Some(in_model_coordinates(e, origin));
-            if e.state != ContactState::Open {
-                let mut dofs = [0usize; DOFS];
-                let nodes = [node, facets[f][0], facets[f][1], facets[f][2], facets[f][3]];
-                for (i, d) in dofs.iter_mut().enumerate() {
-                    *d = 3 * nodes[i / 3] + i % 3;
-                }
-                let locals = [x_s, facet_b[0], facet_b[1], facet_b[2], facet_b[3]];
-                let weights: [f64; DOFS] = std::array::from_fn(|j| locals[j / 3][j % 3].abs());
-                now.force = [-r[0], -r[1], -r[2]];
-                assemble(&dofs, &r, &r, &k, &weights);
-            }
+            slave_block(&r, &k, &mut rs, &mut ks);
+            (e, plane_half)
         }
-        SurfaceMaster::Rigid(rigid) => {
-            let offset = rigid.offset(cfg.t);
-            let centre = rigid_centre(&rigid.shape, offset, origin);
-            let (mut rs, mut ks) = ([0.0; 3], [0.0; 9]);
-            let e = match rigid.shape {
-                RigidSurfaceShape::Plane { point, normal } => {
-                    let facet = plane_facet(point, normal, plane_half, offset, origin);
-                    let Ok(e) = facet_point(law, x_s, facet, history, &mut r, &mut k) else {
-                        return now;
-                    };
-                    slave_block(&r, &k, &mut rs, &mut ks);
-                    e
-                }
-                RigidSurfaceShape::Sphere { radius, .. } => sphere_point(&law, x_s, centre, radius, &mut rs, &mut ks),
-            };
-            if e.projection.gap > pair.search_radius {
-                return now;
-            }
-            now.facet = Some(0);
-            now.eval = Some(in_model_coordinates(e, origin));
-            if e.state != ContactState::Open {
-                // the gap is computed from the rigid geometry's coordinates about the origin
-                let scale = match rigid.shape {
-                    RigidSurfaceShape::Plane { .. } => plane_half,
-                    RigidSurfaceShape::Sphere { radius, .. } => crate::contact3d::vec3::norm(centre) + radius,
-                };
-                let weights: [f64; 3] = std::array::from_fn(|j| x_s[j].abs().max(scale));
-                now.force = [-rs[0], -rs[1], -rs[2]];
-                assemble(&[3 * node, 3 * node + 1, 3 * node + 2], &rs, &rs, &ks, &weights);
-            }
-        }
+        RigidSurfaceShape::Sphere { radius, .. } => (
+            sphere_point(&law, x_s, centre, radius, &mut rs, &mut ks),
+            crate::contact3d::vec3::norm(centre) + radius,
+        ),
+    };
+    if e.projection.gap > pair.search_radius {
+        return now;
+    }
+    now.facet = Some(0);
+    now.eval = Some(in_model_coordinates(e, origin));
+    if e.state != ContactState::Open {
+        // the gap is computed from the rigid geometry's coordinates about the origin
+        let weights: [f64; 3] = std::array::from_fn(|j| x_s[j].abs().max(scale));
+        now.force = [-rs[0], -rs[1], -rs[2]];
+        assemble(&[3 * node, 3 * node + 1, 3 * node + 2], &rs, &rs, &ks, &weights);
     }
     now
 }
