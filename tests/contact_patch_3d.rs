@@ -16,12 +16,10 @@
 //! Measured (2026-11-27, `cargo test --release --test contact_patch_3d -- --nocapture`):
 //! two-pass spread 7.2e-5 (4/3) and 2.6e-4 (8/5) at ε_N = 1e8, 7.2e-6 and 2.7e-5 at 1e9, 3
 //! iterations each; one pass 0.26 and 0.27.
+//! In two increments (4/3): the same press force to 1e-6 and the same spread (asserted).
 mod common;
 
-use contrail::record::Memory;
-use std::sync::atomic::AtomicBool;
-
-fn scene(base: usize, top: usize, two_pass: bool, eps: f64) -> String {
+fn scene(base: usize, top: usize, two_pass: bool, eps: f64, increments: usize) -> String {
     format!(
         r#"name = "contact-patch-3d"
 [[body]]
@@ -70,7 +68,7 @@ nodes = "zmax"
 component = "z"
 sign = -1.0
 [stepping]
-increments = 1
+increments = {increments}
 "#
     )
 }
@@ -82,20 +80,9 @@ struct Outcome {
     closed: usize,
 }
 
-fn run(base: usize, top: usize, two_pass: bool, eps: f64) -> Outcome {
-    let src = contrail::scene::SceneSource {
-        origin: "contact-patch-3d.toml".into(),
-        text: scene(base, top, two_pass, eps),
-    };
-    let file = contrail::scene::parse(&src, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let contrail::scene::AnyProblem::Solid(p) =
-        contrail::scene::build_any(&src, &file).unwrap_or_else(|e| panic!("{e}"))
-    else {
-        panic!("a 3D scene")
-    };
-    let info = contrail::run_info(&src, &[], &p);
-    let mut mem = Memory::default();
-    let summary = contrail::solver::run(&p, &info, &mut mem, &AtomicBool::new(false)).expect("converges");
+fn run(base: usize, top: usize, two_pass: bool, eps: f64, increments: usize) -> Outcome {
+    let (p, summary, mem) =
+        common::solve_solid_text("contact-patch-3d.toml", &scene(base, top, two_pass, eps, increments));
     let face = &p.model.bodies[0].node_sets["zmax"];
     let uz: Vec<f64> = face.iter().map(|&n| mem.final_u[3 * n + 2]).collect();
     let mean = uz.iter().sum::<f64>() / uz.len() as f64;
@@ -114,9 +101,9 @@ fn run(base: usize, top: usize, two_pass: bool, eps: f64) -> Outcome {
 #[test]
 fn two_pass_node_to_surface_transmits_a_uniform_pressure_and_one_pass_does_not() {
     for (base, top) in [(4, 3), (8, 5)] {
-        let two = run(base, top, true, 1e8);
-        let one = run(base, top, false, 1e8);
-        let stiffer = run(base, top, true, 1e9);
+        let two = run(base, top, true, 1e8, 1);
+        let one = run(base, top, false, 1e8, 1);
+        let stiffer = run(base, top, true, 1e9, 1);
         println!(
             "{base}/{top}: two-pass u_z spread {:.2e} in {} iterations, force {:.5}, {} points closed; one pass {:.2e} in {}",
             two.deviation, two.iterations, two.force, two.closed, one.deviation, one.iterations
@@ -147,4 +134,24 @@ fn two_pass_node_to_surface_transmits_a_uniform_pressure_and_one_pass_does_not()
             stiffer.iterations
         );
     }
+}
+
+/// The press in two increments: the same state (elastic and frictionless) and the same
+/// uniformity, in at most 3 Newton iterations per increment.
+#[test]
+fn the_patch_test_in_two_increments_gives_the_same_state() {
+    let one = run(4, 3, true, 1e8, 1);
+    let two = run(4, 3, true, 1e8, 2);
+    assert!(
+        (two.force - one.force).abs() <= 1e-6 * one.force,
+        "{} vs {}",
+        two.force,
+        one.force
+    );
+    assert!(two.deviation <= 1e-3, "spread {:.3e}", two.deviation);
+    assert!(
+        two.iterations <= 6,
+        "{} Newton iterations in two increments",
+        two.iterations
+    );
 }

@@ -101,8 +101,6 @@ impl SurfaceSystem {
             return SurfaceSystem::default();
         };
         let per_point = |p: &SurfacePair| vec![SurfaceNow::default(); p.slaves.len()];
-        let [lo, hi] = bounding_box(model.nodes.iter().copied());
-        let diagonal = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
         let travel = (model.surface_contacts.iter())
             .filter_map(|p| match &p.master {
                 SurfaceMaster::Rigid(r) => Some(
@@ -121,7 +119,7 @@ impl SurfaceSystem {
             current: model.surface_contacts.iter().map(per_point).collect(),
             base: model.surface_contacts.iter().map(per_point).collect(),
             grids: vec![None; model.surface_contacts.len()],
-            plane_half: 4.0 * (diagonal + travel).max(f64::MIN_POSITIVE),
+            plane_half: 4.0 * (model.size() + travel),
         }
     }
 

@@ -151,6 +151,27 @@ impl<S: Dim> Model<S> {
         S::D * self.nodes.len()
     }
 
+    /// The diagonal of the bounding box of the nodes (1 for a model without extent): the
+    /// length scale of tolerances on positions.
+    pub fn size(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for x in &self.nodes {
+            for c in 0..S::D {
+                lo[c] = lo[c].min(x.as_ref()[c]);
+                hi[c] = hi[c].max(x.as_ref()[c]);
+            }
+        }
+        let mut l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        if S::D == 3 {
+            l = l.hypot(hi[2] - lo[2]);
+        }
+        if l.is_finite() && l > 0.0 {
+            l
+        } else {
+            1.0
+        }
+    }
+
     /// The 2D view the contact layer works on ([`Dim::plane`]).
     pub fn plane(&self) -> &Model<Plane> {
         S::plane(self)

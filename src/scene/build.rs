@@ -259,28 +259,11 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
         src,
         mesh_files: Vec::new(),
     };
-    let end = s.stepping.end;
-    if s.stepping.increments == 0 || end <= 0.0 {
-        return Err(cx.err(
-            "stepping",
-            "stepping needs end > 0 and increments ≥ 1".into(),
-            "fix [stepping]",
-        ));
-    }
+    let end = steps::checked_end(&cx, s)?;
     let mut m = Model {
         name: s.name.clone(),
         description: s.description.clone(),
-        nodes: Vec::new(),
-        elements: Vec::new(),
-        bodies: Vec::new(),
-        prescribed: Vec::new(),
-        skew: Vec::new(),
-        loads: Vec::new(),
-        rigid: Vec::new(),
-        contacts: Vec::new(),
-        surface_contacts: Vec::new(),
-        monitors: Vec::new(),
-        notes: Vec::new(),
+        ..Model::default()
     };
     super::body_model::check_mixed(&cx, s)?;
     steps::add_bodies(&mut cx, s, &mut m)?;

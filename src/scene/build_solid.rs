@@ -22,14 +22,7 @@ pub fn is_3d(s: &SceneFile) -> bool {
 pub fn build_solid(src: &SceneSource, s: &SceneFile) -> Result<Problem<Solid>, SceneError> {
     super::validate::validate(src, s)?;
     let cx = Ctx::new(src);
-    let end = s.stepping.end;
-    if s.stepping.increments == 0 || end <= 0.0 {
-        return Err(cx.err(
-            "stepping",
-            "stepping needs end > 0 and increments ≥ 1".into(),
-            "fix [stepping]",
-        ));
-    }
+    let end = super::build::steps::checked_end(&cx, s)?;
     refuse_2d_only(&cx, s)?;
     let mut m = Model::<Solid> {
         name: s.name.clone(),

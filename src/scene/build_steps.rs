@@ -5,6 +5,19 @@
 use super::*;
 use crate::element::quad::Kinematics;
 
+/// The scene's end time, after checking `[stepping]` has `end > 0` and `increments ≥ 1`.
+pub(in crate::scene) fn checked_end(cx: &Ctx, s: &SceneFile) -> Result<f64, SceneError> {
+    let end = s.stepping.end;
+    if s.stepping.increments == 0 || end <= 0.0 {
+        return Err(cx.err(
+            "stepping",
+            "stepping needs end > 0 and increments ≥ 1".into(),
+            "fix [stepping]",
+        ));
+    }
+    Ok(end)
+}
+
 /// Refuse a body that would take the model to `dofs` DOFs, beyond the scene's limit.
 pub(in crate::scene) fn check_dof_limit(cx: &Ctx, s: &SceneFile, b: &BodySpec, dofs: usize) -> Result<(), SceneError> {
     if dofs <= s.limits.max_dofs {

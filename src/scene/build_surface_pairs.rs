@@ -19,7 +19,6 @@
 //!   not checked yet.
 
 use super::build::{body_index, contact_law, motion_ramp, Ctx};
-use super::initial_contact::model_size;
 use super::types::{ContactSpec, EnforcementKind, NodeSelection, RigidSpec, SceneFile};
 use super::SceneError;
 use crate::contact3d::transfer::Scheme;
@@ -360,7 +359,7 @@ pub fn rigid_gap(shape: &RigidSurfaceShape, x: [f64; 3]) -> f64 {
 /// residual would push the face out through the surface and the run would answer wrong.
 /// Pairs against a deformable face are not checked (not built yet).
 pub(super) fn refuse_rigid_overclosures(cx: &Ctx, m: &Model<Solid>) -> Result<(), SceneError> {
-    let tol = RIGID_OVERCLOSURE_TOL * model_size(m);
+    let tol = RIGID_OVERCLOSURE_TOL * m.size();
     for p in &m.surface_contacts {
         let SurfaceMaster::Rigid(r) = &p.master else {
             continue;

@@ -42,7 +42,7 @@ pub fn initial_overlaps(m: &Model, allowed: &[bool]) -> Vec<InitialOverlap> {
         u: &u,
         t: 0.0,
     };
-    let tol = PENETRATION_TOL * model_size(m);
+    let tol = PENETRATION_TOL * m.size();
     let mut out = Vec::new();
     for (ip, pair) in m.contacts.iter().enumerate() {
         if allowed.get(ip).copied().unwrap_or(false) || !matches!(pair.master, Master::Rigid { .. }) {
@@ -124,26 +124,6 @@ pub(super) fn refuse_initial_overlaps(cx: &Ctx, m: &Model, s: &SceneFile) -> Res
             "a rigid outline is listed with the rigid body on the LEFT of the direction of travel; `contrail check` shows the side of each. If `{rigid}` is listed the other way round, list its points (and pieces) in the reverse order; if the bodies really overlap at the start, move them apart, or set allow_initial_penetration = true on the pair (overlaps up to 1 % of the element at the interface are moved onto the master unless adjust_overclosure = false)"
         ),
     ))
-}
-
-/// Diagonal of the bounding box of the model's nodes (1 for an empty or degenerate model).
-pub(super) fn model_size<S: crate::model::Dim>(m: &Model<S>) -> f64 {
-    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-    for x in &m.nodes {
-        for c in 0..S::D {
-            lo[c] = lo[c].min(x.as_ref()[c]);
-            hi[c] = hi[c].max(x.as_ref()[c]);
-        }
-    }
-    let mut l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    if S::D == 3 {
-        l = l.hypot(hi[2] - lo[2]);
-    }
-    if l.is_finite() && l > 0.0 {
-        l
-    } else {
-        1.0
-    }
 }
 
 #[cfg(test)]

@@ -71,7 +71,7 @@ fn small_overlaps(m: &Model, ip: usize, sizes: &[f64], roundoff: f64) -> Vec<Mov
 /// inside it by at most [`ADJUST_SHARE`] of their element (module docs), and note each
 /// pair's adjustment on the model.
 pub(super) fn adjust_overclosures(m: &mut Model, s: &SceneFile) {
-    let roundoff = super::initial_contact::PENETRATION_TOL * super::initial_contact::model_size(m);
+    let roundoff = super::initial_contact::PENETRATION_TOL * m.size();
     let sizes = m.smallest_edge_at_nodes();
     for ip in 0..m.contacts.len() {
         // the pair's own spec, also for the pairs it implies (`NAME/second-pass`)

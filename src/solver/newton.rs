@@ -440,7 +440,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
     /// held by nothing but the supports it rests on), the other element of the generalised
     /// Jacobian is taken for this correction: they rest ([`Kink::Resting`]).
     fn solve_correction(&mut self) -> Result<(), NewtonFailure> {
-        let size = super::tangent_check::model_size(self.model);
+        let size = self.model.size();
         let solved = self.solve_direction();
         let sane = |du: &[f64]| du.iter().all(|d| d.abs() <= size);
         let open = self.state.contact.kink() == Kink::Open;

@@ -115,7 +115,7 @@ pub fn check_tangent<S: Dim>(
             .filter(|&d| asm.dofs.eq[d].is_some())
             .collect()
     };
-    let h = 1e-7 * model_size(model);
+    let h = 1e-7 * model.size();
     let residual_at = |asm: &mut Assembler<S>, u: &[f64]| -> Result<Vec<f64>, AssemblyError> {
         let mut trial = state.clone();
         asm.assemble(model, u, t, &mut trial.alphas, &mut trial.contact, false)?;
@@ -185,27 +185,6 @@ fn compare(d: usize, k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> C
         error,
         kink: sided > 1e2 * COLUMN_TOLERANCE || from_one_side,
         jump,
-    }
-}
-
-/// Diagonal of the bounding box of the model's nodes and rigid bodies' points.
-pub(crate) fn model_size<S: Dim>(model: &Model<S>) -> f64 {
-    let mut lo = [f64::MAX; 3];
-    let mut hi = [f64::MIN; 3];
-    for x in &model.nodes {
-        for c in 0..S::D {
-            lo[c] = lo[c].min(x.as_ref()[c]);
-            hi[c] = hi[c].max(x.as_ref()[c]);
-        }
-    }
-    let mut l = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
-    if S::D == 3 {
-        l = l.hypot(hi[2] - lo[2]);
-    }
-    if l.is_finite() && l > 0.0 {
-        l
-    } else {
-        1.0
     }
 }
 

@@ -82,3 +82,22 @@ pub fn assert_same_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, 
         );
     }
 }
+
+/// Load a 3D scene from TOML text (`origin`: its name in errors) and run it to completion,
+/// keeping every record in memory.
+pub fn solve_solid_text(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, RunSummary, Memory) {
+    let src = contrail::scene::SceneSource {
+        origin: origin.into(),
+        text: text.into(),
+    };
+    let file = contrail::scene::parse(&src, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let built = contrail::scene::build_any(&src, &file).unwrap_or_else(|e| panic!("{e}"));
+    let contrail::scene::AnyProblem::Solid(problem) = built else {
+        panic!("{origin}: not a 3D scene")
+    };
+    let info = contrail::run_info(&src, &[], &problem);
+    let mut mem = Memory::default();
+    let summary = run(&problem, &info, &mut mem, &AtomicBool::new(false))
+        .unwrap_or_else(|e| panic!("{}: {e}", problem.model.name));
+    (problem, summary, mem)
+}
