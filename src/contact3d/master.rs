@@ -9,10 +9,10 @@
 
 use super::point::{History, PointEval, PointProblem, DOFS};
 use super::projection::{Location, Projection, ProjectionError};
-use super::surface::{Facet, FacetPoint};
-use super::vec3::{add, cross, dot, norm, scale, sub, V3};
+use super::surface::FacetPoint;
+use super::vec3::{add, cross, dot, norm, scale, sub};
 use crate::contact::law::ContactState;
-use crate::model::{ContactLaw, RigidSurfaceShape};
+use crate::model::ContactLaw;
 
 /// The four corners of a rigid plane as a fixed bilinear facet about `origin`: the square
 /// of half-width `half` centred on the plane's reference point, moved by `offset`, its
@@ -119,23 +119,10 @@ pub fn facet_point(
     problem.residual_tangent(r, k)
 }
 
-/// The rigid surface's reference point moved by `offset`, about `origin`.
-pub fn rigid_centre(shape: &RigidSurfaceShape, offset: [f64; 3], origin: [f64; 3]) -> V3<f64> {
-    let at = match shape {
-        RigidSurfaceShape::Plane { point, .. } => *point,
-        RigidSurfaceShape::Sphere { centre, .. } => *centre,
-    };
-    add(sub(at, origin), offset)
-}
-
-/// A facet of plain coordinates.
-pub fn facet_of(x: [[f64; 3]; 4]) -> Facet<f64> {
-    Facet { x }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact3d::surface::Facet;
 
     #[test]
     fn the_sphere_tangent_is_the_derivative_of_its_residual() {
@@ -176,7 +163,7 @@ mod tests {
     fn a_plane_facet_has_the_plane_normal_and_projects_the_point_inside() {
         let n = [0.0, 0.6, 0.8];
         let f = plane_facet([1.0, 2.0, 3.0], n, 10.0, [0.0, 0.0, 0.5], [1.0, 2.0, 3.0]);
-        let p = facet_of(f).point([0.3, -0.2]).unwrap();
+        let p = Facet { x: f }.point([0.3, -0.2]).unwrap();
         for (got, want) in p.normal.iter().zip(n) {
             assert!((got - want).abs() < 1e-14);
         }

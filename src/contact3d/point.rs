@@ -38,6 +38,12 @@ use nalgebra::{Const, U1};
 use num_dual::{Dual2SVec64, DualSVec64};
 
 /// A gap within `TOUCH` times the facet's size of zero is touching: the point is closed.
+/// The active set of a penalty method is `ζ ≤ 0` (Wriggers, Computational Contact Mechanics,
+/// 2nd ed. (2006) §6.3.1, the active set strategy's `g_N ≤ 0`): a point at zero gap takes the
+/// closed side of the normal kink, so the penalty's stiffness enters the first correction of
+/// bodies meshed against each other. `TOUCH` only admits the gap's round-off (a few ulps of
+/// the coordinates, which are about the slave's origin and of the facet's size); the normal
+/// force at such a gap is below `ε_N 1e-12 · size`.
 pub const TOUCH: f64 = 1e-12;
 
 fn projection_gap_re<S: Scalar>(e: &PointEval<S>) -> f64 {

@@ -11,10 +11,11 @@
 //! `contact::decision` is not carried over), so the complementarity residuals are zero and
 //! Newton's merit is the equilibrium residual.
 
-use super::master::{facet_of, facet_point, plane_facet, rigid_centre, slave_block, sphere_point};
+use super::master::{facet_point, plane_facet, slave_block, sphere_point};
 use super::point::{History, PointEval, DOFS};
 use super::projection::{project, INSIDE_TOLERANCE};
 use super::search::{bounding_box, FacetGrid};
+use super::surface::Facet;
 use super::transfer::transfer;
 use crate::contact::law::ContactState;
 use crate::contact::system::{Decision, LocalSink};
@@ -64,8 +65,10 @@ pub struct SurfaceNow {
     pub eval: Option<PointEval<f64>>,
     /// The contact force on the slave node as assembled (`−r_s`).
     pub force: [f64; 3],
-    /// The friction history came from another facet in this increment.
-    pub transferred: bool,
+    /// The friction history could not be carried onto this facet from the last converged
+    /// one ([`super::transfer::TransferError`]: the facets folded onto each other, or the old
+    /// point not found on the new facet): the point starts it afresh, as a point closing now.
+    pub history_lost: bool,
 }
 
 /// One point at a converged increment, for records, monitors and the equilibrium check.
@@ -80,6 +83,8 @@ pub struct SurfaceSnapshot {
     pub force: [f64; 3],
     /// Closed now and at the last converged increment, on another facet.
     pub crossing: bool,
+    /// See [`SurfaceNow::history_lost`].
+    pub history_lost: bool,
 }
 
 /// The 3D contact state of all pairs.
@@ -227,6 +232,7 @@ impl SurfaceSystem {
                     eval: now.eval,
                     force: now.force,
                     crossing: closed && hist.closed && hist.facet != now.facet,
+                    history_lost: now.history_lost,
                 });
             }
         }
@@ -273,20 +279,22 @@ pub fn locate(
     radius: f64,
 ) -> Option<usize> {
     let try_facet = |f: usize| -> Option<(f64, f64)> {
-        let facet = facet_of(facets[f].map(|n| cfg.node(n)));
+        let facet = Facet {
+            x: facets[f].map(|n| cfg.node(n)),
+        };
         let p = project(&facet, x).ok()?;
         let excess = p.point.xi.iter().map(|v| v.abs() - 1.0).fold(0.0, f64::max);
         (p.gap.abs() <= radius).then_some((excess, p.gap.abs()))
     };
     if let Some(s) = start {
-        if try_facet(s).is_some_and(|(excess, _)| excess <= INSIDE_TOLERANCE.max(1e-9)) {
+        if try_facet(s).is_some_and(|(excess, _)| excess <= INSIDE_TOLERANCE) {
             return Some(s);
         }
     }
     let mut best: Option<(usize, (f64, f64))> = None;
     for &f in grid.candidates(x) {
         let Some(score) = try_facet(f) else { continue };
-        let inside = |s: (f64, f64)| s.0 <= 1e-9;
+        let inside = |s: (f64, f64)| s.0 <= INSIDE_TOLERANCE;
         let better = match best {
             None => true,
             Some((_, b)) => match (inside(score), inside(b)) {
@@ -345,9 +353,12 @@ fn on_facets(
     let facet_b = cfg.facet_about(&facets[f], origin);
     let carried = match (hist.history.filter(|_| hist.closed), hist.facet) {
         (Some(h), Some(a)) if a != f => {
-            now.transferred = true;
-            let facet_a = cfg.facet_about(&facets[a], origin);
-            transfer(pair.transfer, &facet_of(facet_a), &h, &facet_of(facet_b)).ok()
+            let facet_a = Facet {
+                x: cfg.facet_about(&facets[a], origin),
+            };
+            let carried = transfer(pair.transfer, &facet_a, &h, &Facet { x: facet_b }).ok();
+            now.history_lost = carried.is_none();
+            carried
         }
         (h, _) => h,
     };
@@ -386,7 +397,6 @@ fn on_rigid(
     let law = pair.law_of(is);
     let mut now = SurfaceNow::default();
     let offset = rigid.offset(cfg.t);
-    let centre = rigid_centre(&rigid.shape, offset, origin);
     let (mut rs, mut ks) = ([0.0; 3], [0.0; 9]);
     let (e, scale) = match rigid.shape {
         RigidSurfaceShape::Plane { point, normal } => {
@@ -399,10 +409,13 @@ fn on_rigid(
             slave_block(&r, &k, &mut rs, &mut ks);
             (e, plane_half)
         }
-        RigidSurfaceShape::Sphere { radius, .. } => (
-            sphere_point(&law, x_s, centre, radius, &mut rs, &mut ks),
-            crate::contact3d::vec3::norm(centre) + radius,
-        ),
+        RigidSurfaceShape::Sphere { centre, radius } => {
+            let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
+            (
+                sphere_point(&law, x_s, centre, radius, &mut rs, &mut ks),
+                crate::contact3d::vec3::norm(centre) + radius,
+            )
+        }
     };
     if e.projection.gap > pair.search_radius {
         return now;
@@ -425,3 +438,7 @@ fn in_model_coordinates(mut e: PointEval<f64>, origin: [f64; 3]) -> PointEval<f6
     *rho = std::array::from_fn(|c| rho[c] + origin[c]);
     e
 }
+
+#[cfg(test)]
+#[path = "system_tests.rs"]
+mod tests;

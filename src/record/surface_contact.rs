@@ -33,6 +33,9 @@ pub struct SurfacePointRecord {
     pub state: ContactState,
     /// Closed now and at the last converged increment, on another facet.
     pub crossing: bool,
+    /// The friction history could not be carried onto `facet` (see
+    /// `contact3d::system::SurfaceNow::history_lost`): the run warns at the first.
+    pub history_lost: bool,
     pub position: [f64; 3],
     pub contact_point: [f64; 3],
     /// Unit outward normal of the master at the contact point.
@@ -62,6 +65,7 @@ impl SurfacePointRecord {
             traction: e.map_or([0.0; 2], |e| e.traction),
             state: e.map_or(ContactState::Open, |e| e.state),
             crossing: s.crossing,
+            history_lost: s.history_lost,
             position,
             contact_point: e.map_or(nan3, |e| e.projection.point.rho),
             normal: e.map_or(nan3, |e| e.projection.point.normal),

@@ -85,7 +85,8 @@ pub struct RunSummary {
     /// Crossings at which the transfer scheme changed the friction history (the trial
     /// traction after the crossing differs from the one carried on the old segment's
     /// extension by more than [`HISTORY_JUMP`] of the larger): the force history then carries
-    /// the scheme's error (the straightforward transfer's, seed Fig. 4).
+    /// the scheme's error (the straightforward transfer's, seed Fig. 4). In 3D: crossings at
+    /// which the history could not be carried onto the new facet and was lost.
     pub history_jumps: usize,
     /// Converged increments with contact points left on an extension of their segment.
     pub on_extension: usize,

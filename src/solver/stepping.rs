@@ -452,6 +452,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
         self.check_penetration(&points, obs)?;
         self.summary.crossings += crossings.len() + surface_crossings;
         self.report_history_jumps(&crossings, obs)?;
+        self.report_lost_histories(&surface_points, obs)?;
         self.summary.on_extension += usize::from(done.on_extension > 0);
         self.summary.line_search_failures += done.conv.line_search_failures;
         self.summary.front_iterations += done.conv.front_iterations;
@@ -594,6 +595,29 @@ impl<'a, S: Dim> Stepping<'a, S> {
     /// Warn the first time a converged increment penetrates deeper than
     /// [`super::penetration::DEEP_PENETRATION`] of the local element size, and keep the
     /// deepest for the run's summary.
+    /// Count the 3D points whose friction history could not be carried onto their new facet
+    /// (counted with [`RunSummary::history_jumps`]) and warn at the first: the run goes on,
+    /// those points starting their friction afresh.
+    fn report_lost_histories(
+        &mut self,
+        points: &[SurfacePointRecord],
+        obs: &mut dyn Observer,
+    ) -> Result<(), SolveError> {
+        for p in points.iter().filter(|p| p.history_lost) {
+            self.summary.history_jumps += 1;
+            if self.summary.history_jumps == 1 {
+                let message = format!(
+                    "node {} of `{}` moved from facet {:?} to {:?}: its friction history could not be carried onto the new \
+                     facet (the facets fold onto each other, or the old contact point has no projection on it) and starts \
+                     afresh — the force history is not the method's from here on",
+                    p.node, p.pair_name, p.previous_facet, p.facet
+                );
+                log(obs, LogLevel::Warning, self.increment, self.t, message)?;
+            }
+        }
+        Ok(())
+    }
+
     fn check_penetration(&mut self, points: &[ContactPointRecord], obs: &mut dyn Observer) -> Result<(), SolveError> {
         use super::penetration::{deepest, warning, DEEP_PENETRATION};
         let Some(p) = deepest(self.model.plane(), &self.node_sizes, points) else {
