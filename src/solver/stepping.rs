@@ -535,14 +535,16 @@ impl<'a, S: Dim> Stepping<'a, S> {
             u: &self.committed.u,
             t: self.t,
         });
-        let surface = solid
-            .as_ref()
-            .map_or(Vec::new(), |c| self.committed.contact.surface.snapshots(c));
-        let surface_points = (solid.as_ref().zip(Some(&surface))).map_or(Vec::new(), |(c, s)| {
-            s.iter()
-                .map(|p| SurfacePointRecord::of(c.model, &self.committed.u, p))
-                .collect()
-        });
+        let (surface, surface_points) = match &solid {
+            Some(c) => {
+                let snapshots = self.committed.contact.surface.snapshots(c);
+                let records = (snapshots.iter())
+                    .map(|p| SurfacePointRecord::of(c.model, &self.committed.u, p))
+                    .collect();
+                (snapshots, records)
+            }
+            None => (Vec::new(), Vec::new()),
+        };
         let monitors = super::monitor::records(self.model, &self.asm, &self.committed.u, self.t, &snapshots);
         let imbalance =
             super::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, &surface, self.fref);
