@@ -3,7 +3,7 @@
 schema, the schemas must equal the checked-in files of the recording's format (format 3:
 schemas/ and schemas/foxglove/; format 2 and older: schemas/format2/), and the run metadata,
 scene attachment and closing outcome message must be present. In format 3 every `/contact`,
-`/pressure` and `/interface` message is a set of equally long arrays, one `/contact` message per increment
+`/pressure`, `/interface` and `/surface_contact` message is a set of equally long arrays, one `/contact` message per increment
 and pair; the Foxglove channels are validated again against the schemas published in
 `@foxglove/schemas` (`--foxglove DIR` with foxglove.Log.json and foxglove.SceneUpdate.json as
 the package has them; the recording embeds them without their descriptions).
@@ -27,6 +27,9 @@ CONTACT_ARRAYS = ["slave", "segment", "previous_segment", "xi", "xi_anchor", "ga
                   "normal", "tangent", "force"]
 PRESSURE_ARRAYS = ["slave", "node", "segment", "s", "contact_point", "normal_force", "tributary", "pressure"]
 INTERFACE_ARRAYS = ["node", "s", "position", "normal", "tributary", "pressure", "shear", "state"]
+SURFACE_ARRAYS = ["slave", "node", "facet", "previous_facet", "xi", "gap", "normal_force", "trial_traction",
+                  "traction", "state", "crossing", "history_lost", "carried", "position", "contact_point",
+                  "normal", "force"]
 
 
 def reject_constant(name):
@@ -73,7 +76,7 @@ class Check:
             if reader.get_header().profile != "contrail":
                 self.problems.append(f"profile {reader.get_header().profile!r}, expected 'contrail'")
             topics = {c.topic for c in reader.get_summary().channels.values()}
-            expected = TOPICS | (set(FOXGLOVE) | {"/interface"} if self.version == "3" else set())
+            expected = TOPICS | (set(FOXGLOVE) | {"/interface", "/surface_contact"} if self.version == "3" else set())
             if topics != expected:
                 self.problems.append(f"channels {sorted(topics)}, expected {sorted(expected)}")
             texts = checked_in(self.schemas_dir, self.version)
@@ -137,8 +140,9 @@ class Check:
             errors = list(v.iter_errors(value))
             if errors:
                 self.problems.append(f"{topic} #{message.sequence}: {errors[0].message}")
-        if self.version == "3" and topic in ("/contact", "/pressure", "/interface"):
-            fields = {"/contact": CONTACT_ARRAYS, "/pressure": PRESSURE_ARRAYS, "/interface": INTERFACE_ARRAYS}[topic]
+        if self.version == "3" and topic in ("/contact", "/pressure", "/interface", "/surface_contact"):
+            fields = {"/contact": CONTACT_ARRAYS, "/pressure": PRESSURE_ARRAYS, "/interface": INTERFACE_ARRAYS,
+                      "/surface_contact": SURFACE_ARRAYS}[topic]
             lengths = {k: len(value[k]) for k in fields if isinstance(value.get(k), list)}
             if len(set(lengths.values())) != 1 or len(lengths) != len(fields):
                 self.problems.append(f"{topic} #{message.sequence}: arrays of lengths {lengths}")

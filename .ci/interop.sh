@@ -81,6 +81,12 @@ record contact-patch --quiet --out "$TMP/patch.mcap"
 # a 3D solid: its recording, rerun stream and ParaView series of hexahedra
 record cantilever-3d --quiet --out "$TMP/c3.mcap" --out "$TMP/c3.pvd" --rerun-save "$TMP/c3.rrd"
 "$BIN" inspect "$TMP/c3.mcap" >/dev/null
+# 3D contact (a rigid sphere): /surface_contact, its rerun view live and replayed
+record hertz-3d --quiet --out "$TMP/h3.mcap" --out "$TMP/h3.pvd" --rerun-save "$TMP/h3.rrd"
+"$BIN" export "$TMP/h3.mcap" --vtu "$TMP/h3-exported" >/dev/null
+"$BIN" inspect "$TMP/h3.mcap" >"$TMP/h3.inspect"
+grep -q "^3D contact" "$TMP/h3.inspect"
+"$BIN" replay "$TMP/h3.mcap" --rerun-save "$TMP/h3-replay.rrd"
 
 echo "== interop: the published Foxglove schemas"
 # the package ships its JSON Schemas as a module (dist/jsonschema): written out as files
@@ -98,7 +104,7 @@ echo "== interop: mcap + jsonschema"
 "$VENV/bin/python" .ci/interop.py --schemas schemas --foxglove "$FOXGLOVE_DIR" \
     "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
     "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap" "$TMP/scenes.mcap" \
-    "$TMP/patch.mcap" "$TMP/c3.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
+    "$TMP/patch.mcap" "$TMP/c3.mcap" "$TMP/h3.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
 
 echo "== interop: the numpy snippet of docs/recording.md"
 # the python block after the marker line, run as it is on a recording
@@ -112,9 +118,11 @@ echo "== interop: meshio reads the VTU series"
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/hd2.pvd" "$TMP/hd.mcap" "$TMP/hd2.csv" --every 2
 "$VENV/bin/python" .ci/vtu_check.py "$TMP/exported/hd.pvd" "$TMP/hd.mcap" "$TMP/hd.csv"
 "$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/c3.pvd" "$TMP/c3.mcap"
+"$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/h3.pvd" "$TMP/h3.mcap"
+"$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/h3-exported/h3.pvd" "$TMP/h3.mcap"
 
 echo "== interop: rerun rrd verify"
-for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd" "$TMP/c3.rrd"; do
+for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd" "$TMP/c3.rrd" "$TMP/h3.rrd" "$TMP/h3-replay.rrd"; do
     "$VENV/bin/rerun" rrd verify "$f"
 done
 echo "== interop: contrail serve → contrail submit strip-channel --wait → Python mcap over HTTP range requests"

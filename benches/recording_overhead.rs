@@ -70,7 +70,7 @@ fn bench(c: &mut Criterion) {
                 save: Some(rrd.clone()),
                 ..RerunTargets::default()
             };
-            let stream = rerun_sink::open(&targets, "bench").expect("rerun");
+            let stream = rerun_sink::open(&targets, "bench", 2).expect("rerun");
             let mut sink = RerunSink::new(stream, "rerun");
             contrail::solver::run(&problem, &info, &mut sink, &stop).map(|s| s.increments)
         })

@@ -292,6 +292,7 @@ fn the_rerun_file_of_a_run_and_of_its_replay_are_written() {
             ..RerunTargets::default()
         },
         "crossing",
+        2,
     )
     .unwrap();
     let mut rr = RerunSink::new(stream, "rerun");
@@ -311,6 +312,7 @@ fn the_rerun_file_of_a_run_and_of_its_replay_are_written() {
             ..RerunTargets::default()
         },
         "crossing",
+        2,
     )
     .unwrap();
     let mut view = RerunView::new(stream, &r.model).unwrap();

@@ -7,6 +7,7 @@
 //! relative above); NaN agrees with NaN only; segment ids, states and iteration counts must
 //! be equal.
 
+pub use super::diff_surface::SURFACE_FIELDS;
 use super::plot::Series;
 use super::recording::Recording;
 use crate::record::messages::CrossingMessage;
@@ -184,7 +185,7 @@ pub fn align(a: &Recording, b: &Recording, how: Align) -> Vec<(usize, usize)> {
 
 /// A value of a field at an increment (and point).
 #[derive(Debug, Clone, PartialEq)]
-enum V {
+pub(super) enum V {
     Num(f64),
     Exact(String),
 }
@@ -247,7 +248,7 @@ impl FieldDiff {
         }
     }
 
-    fn compare(&mut self, a: &V, b: &V, tol: f64, at: impl FnOnce() -> Divergence) {
+    pub(super) fn compare(&mut self, a: &V, b: &V, tol: f64, at: impl FnOnce() -> Divergence) {
         self.compared += 1;
         let ok = match (a, b) {
             (V::Num(x), V::Num(y)) => {
@@ -307,9 +308,13 @@ pub fn check_comparable(a: &Recording, b: &Recording) -> Result<(), DiffError> {
 pub fn diff(a: &Recording, b: &Recording, how: Align, tol: f64) -> Result<DiffReport, DiffError> {
     check_comparable(a, b)?;
     let pairs = align(a, b, how);
+    let point_fields = match a.model.dim() {
+        3 => SURFACE_FIELDS,
+        _ => POINT_FIELDS,
+    };
     let mut fields: Vec<FieldDiff> = INCREMENT_FIELDS
         .iter()
-        .chain(POINT_FIELDS)
+        .chain(point_fields)
         .filter(|f| !(how == Align::Load && **f == "t"))
         .map(|f| FieldDiff::new(f))
         .collect();
@@ -370,6 +375,8 @@ fn compare_increments(a: &Recording, b: &Recording, (i, j): (usize, usize), tol:
             }
         }
     }
+    let (sa, sb) = (a.surface_at(ra.increment), b.surface_at(rb.increment));
+    super::diff_surface::compare(sa, sb, tol, fields, &at);
     let (ca, cb) = (a.contact_at(ra.increment), b.contact_at(rb.increment));
     for pa in ca {
         let Some(pb) = cb.iter().find(|p| p.pair == pa.pair && p.slave == pa.slave) else {

@@ -8,9 +8,9 @@
 //! the series has the displacement and the contact points only.
 
 use super::recording::Recording;
-use crate::model::Model;
-use crate::record::vtu::file::{contact_piece, mesh_piece};
-use crate::record::vtu::sink::{model_piece, VtuSeries};
+use crate::model::{Model, ModelRef, Solid};
+use crate::record::vtu::file::{contact_piece, mesh_piece, solid_piece, surface_contact_piece};
+use crate::record::vtu::sink::{model_piece, solid_model_piece, VtuSeries};
 use std::io;
 use std::path::Path;
 
@@ -30,11 +30,33 @@ pub fn matches(model: &Model, r: &Recording) -> bool {
         && model.elements.iter().zip(&r.model.elements).all(|(e, q)| e.nodes == *q)
 }
 
+/// Whether `model` is the 3D model the recording was made with (same nodes and hexahedra).
+pub fn matches_solid(model: &Model<Solid>, r: &Recording) -> bool {
+    model.nodes == r.model.nodes_3d
+        && model.elements.len() == r.model.hexahedra.len()
+        && model
+            .elements
+            .iter()
+            .zip(&r.model.hexahedra)
+            .all(|(e, q)| e.nodes == *q)
+}
+
 /// Write the series of `r` as `pvd` (and the directory beside it); `model` (if it
-/// [`matches`]) gives the element fields.
-pub fn export_vtu(r: &Recording, model: Option<&Model>, pvd: &Path) -> io::Result<ExportSummary> {
-    let model = model.filter(|m| matches(m, r));
-    let mut series = VtuSeries::create(pvd)?;
+/// [`matches`] or [`matches_solid`]) gives the element fields.
+pub fn export_vtu(r: &Recording, model: Option<ModelRef<'_>>, pvd: &Path) -> io::Result<ExportSummary> {
+    let series = VtuSeries::create(pvd)?;
+    if r.model.dim() == 3 {
+        let solid = match model {
+            Some(ModelRef::Solid(m)) if matches_solid(m, r) => Some(m),
+            _ => None,
+        };
+        return export_solid(r, solid, series);
+    }
+    let model = match model {
+        Some(ModelRef::Plane(m)) if matches(m, r) => Some(m),
+        _ => None,
+    };
+    let mut series = series;
     let no_contact = Vec::new();
     for p in &r.positions {
         if p.nodes.len() != r.model.nodes.len() {
@@ -60,6 +82,39 @@ pub fn export_vtu(r: &Recording, model: Option<&Model>, pvd: &Path) -> io::Resul
         };
         let contact =
             (!r.model.contacts.is_empty()).then(|| contact_piece(r.contact.get(&p.increment).unwrap_or(&no_contact)));
+        series.step(p.increment, p.t, &mesh, contact.as_ref())?;
+    }
+    series.finish()?;
+    Ok(ExportSummary {
+        steps: series.steps(),
+        fields: model.is_some(),
+    })
+}
+
+/// The series of a 3D recording: the hexahedra with their displacement (and element fields
+/// where the model is given) and the 3D contact points.
+fn export_solid(r: &Recording, model: Option<&Model<Solid>>, mut series: VtuSeries) -> io::Result<ExportSummary> {
+    let m = &r.model;
+    for p in &r.positions {
+        if p.nodes_3d.len() != m.nodes_3d.len() {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!(
+                    "/positions of increment {} has {} nodes, the model {}",
+                    p.increment,
+                    p.nodes_3d.len(),
+                    m.nodes_3d.len()
+                ),
+            ));
+        }
+        let u: Vec<f64> = (p.nodes_3d.iter().zip(&m.nodes_3d))
+            .flat_map(|(x, x0)| [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]])
+            .collect();
+        let mesh = match model {
+            Some(model) => solid_model_piece(model, &u),
+            None => solid_piece(&m.nodes_3d, &m.hexahedra, &m.element_body, &u, None),
+        };
+        let contact = (!m.surface_contacts.is_empty()).then(|| surface_contact_piece(r.surface_at(p.increment)));
         series.step(p.increment, p.t, &mesh, contact.as_ref())?;
     }
     series.finish()?;

@@ -42,6 +42,9 @@ pub struct InspectReport {
     /// Each two-pass interface at the last increment with `/interface` (both passes
     /// combined, see [`crate::record::interface`]).
     pub interfaces: Vec<String>,
+    /// Each 3D contact pair at the last increment: closed points by state, normal force,
+    /// histories lost (see [`super::inspect_surface::state_rows`]).
+    pub surface_contact: Vec<String>,
     pub increments: usize,
     pub final_t: f64,
     pub end: f64,
@@ -77,7 +80,14 @@ pub fn inspect(r: &Recording) -> InspectReport {
         (None, Some(b)) if matches!(r.outcome, Some(Outcome::Failed { .. })) => Some(b),
         (a, _) => a,
     };
-    let per_point = crossings_per_point(r);
+    let mut per_point = crossings_per_point(r);
+    per_point.extend(super::inspect_surface::crossings_per_point(r));
+    let surface_crossings: usize = (per_point.iter())
+        .filter(|p| p.pair >= r.model.contacts.len())
+        .map(|p| p.crossings)
+        .sum();
+    let mut contact_pairs = contact_pair_rows(r);
+    contact_pairs.extend(super::inspect_surface::pair_rows(r));
     let last = r.increments.last();
     InspectReport {
         file: r.path.clone(),
@@ -94,25 +104,9 @@ pub fn inspect(r: &Recording) -> InspectReport {
         format_version: meta("format_version"),
         nodes: r.model.node_count(),
         elements: r.model.elements.len() + r.model.hexahedra.len(),
-        contact_pairs: r
-            .model
-            .contacts
-            .iter()
-            .map(|p| {
-                let pass = match p.name.strip_suffix(SECOND_PASS_SUFFIX) {
-                    Some(first) => format!("; the second pass of `{first}`: see its interface"),
-                    None => String::new(),
-                };
-                format!(
-                    "{}: {} against the master {} ({}{pass})",
-                    p.name,
-                    count(p.slaves.len(), "slave", "slaves"),
-                    p.master,
-                    p.transfer
-                )
-            })
-            .collect(),
+        contact_pairs,
         interfaces: interface_rows(r),
+        surface_contact: super::inspect_surface::state_rows(r),
         increments: r.increments.len(),
         final_t: last.map_or(0.0, |i| i.t),
         end: r.model.end,
@@ -122,7 +116,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
         status,
         stopped,
         first_failure,
-        crossings: r.crossings.len(),
+        crossings: r.crossings.len() + surface_crossings,
         crossings_per_point: per_point,
         warnings: r.logs.iter().filter(|l| l.level == LogLevel::Warning).count(),
         errors: r.logs.iter().filter(|l| l.level == LogLevel::Error).count(),
@@ -131,6 +125,27 @@ pub fn inspect(r: &Recording) -> InspectReport {
         positions_every: meta("positions_every"),
         chunks: r.chunks,
     }
+}
+
+/// One line per 2D contact pair: its slaves, master and transfer scheme.
+fn contact_pair_rows(r: &Recording) -> Vec<String> {
+    r.model
+        .contacts
+        .iter()
+        .map(|p| {
+            let pass = match p.name.strip_suffix(SECOND_PASS_SUFFIX) {
+                Some(first) => format!("; the second pass of `{first}`: see its interface"),
+                None => String::new(),
+            };
+            format!(
+                "{}: {} against the master {} ({}{pass})",
+                p.name,
+                count(p.slaves.len(), "slave", "slaves"),
+                p.master,
+                p.transfer
+            )
+        })
+        .collect()
 }
 
 /// One line per two-pass interface, at the last increment that has `/interface`: its normal
@@ -302,6 +317,9 @@ fn render_rows(s: &InspectReport, o: &mut String) {
     for f in &s.interfaces {
         row("interface", f.clone());
     }
+    for f in &s.surface_contact {
+        row("3D contact", f.clone());
+    }
     row(
         "increments",
         format!("{} to t = {} of {}", s.increments, plain(s.final_t), plain(s.end)),
@@ -363,9 +381,9 @@ fn render_crossings(s: &InspectReport, o: &mut String) {
 
 /// The table of messages per channel, and how often positions were written.
 fn render_channels(s: &InspectReport, o: &mut String) {
-    let _ = writeln!(o, "\n  {:<12} {:>9}", "channel", "messages");
+    let _ = writeln!(o, "\n  {:<16} {:>9}", "channel", "messages");
     for (topic, n) in &s.message_counts {
-        let _ = writeln!(o, "  {topic:<12} {n:>9}");
+        let _ = writeln!(o, "  {topic:<16} {n:>9}");
     }
     let every = match s.positions_every.as_str() {
         "1" => "every increment".to_string(),

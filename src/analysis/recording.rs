@@ -7,8 +7,10 @@ use super::validate_records::{check_model, check_records};
 use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
 use crate::record::mcap::schemas;
+use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{ContactPointMessage, CrossingMessage, ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::pressure::PressureRecord;
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::{ContactPointRecord, IncrementRecord, IterationRecord, LogRecord, Outcome};
 use mcap::records::Record;
 use serde::de::DeserializeOwned;
@@ -68,6 +70,12 @@ pub struct Recording {
     /// Two-pass interfaces, both passes combined (`/interface`; none in recordings of runs
     /// without a two-pass pair or made before the channel).
     pub interface: Vec<InterfaceRecord>,
+    /// 3D (node-to-surface) contact points by increment number, in pair and slave order
+    /// (`/surface_contact`; none in 2D).
+    pub surface: BTreeMap<usize, Vec<SurfacePointRecord>>,
+    /// The rigid masters' offsets of the 3D pairs by increment (one per pair, zero for
+    /// facets; `/surface_contact` `master_offset`).
+    pub surface_offsets: BTreeMap<usize, Vec<[f64; 3]>>,
     /// Message count per topic.
     pub message_counts: BTreeMap<String, u64>,
     pub chunks: usize,
@@ -151,11 +159,18 @@ impl Recording {
             outcome: b.outcome,
             pressure: b.pressure,
             interface: b.interface,
+            surface: b.surface,
+            surface_offsets: b.surface_offsets,
             message_counts: b.counts,
             chunks,
             start_time: b.start_time,
             increment_times: b.increment_times,
         })
+    }
+
+    /// 3D contact points of an increment (empty if none were recorded).
+    pub fn surface_at(&self, increment: usize) -> &[SurfacePointRecord] {
+        self.surface.get(&increment).map_or(&[], Vec::as_slice)
     }
 
     /// Contact points of an increment (empty if none were recorded).
@@ -380,10 +395,13 @@ pub(crate) struct Builder {
     pub(crate) outcome: Option<Outcome>,
     pub(crate) pressure: Vec<PressureRecord>,
     pub(crate) interface: Vec<InterfaceRecord>,
+    pub(crate) surface: BTreeMap<usize, Vec<SurfacePointRecord>>,
+    pub(crate) surface_offsets: BTreeMap<usize, Vec<[f64; 3]>>,
     pub(crate) counts: BTreeMap<String, u64>,
     /// Format-3 messages, made into records once the model is known.
     contact_arrays: Vec<ContactArrays>,
     pressure_arrays: Vec<PressureArrays>,
+    surface_arrays: Vec<SurfaceContactArrays>,
     packed_positions: Vec<PackedPositions>,
     start_time: u64,
     increment_times: BTreeMap<usize, u64>,
@@ -438,6 +456,7 @@ impl Builder {
             }
             schemas::PRESSURE => self.pressure.push(parse(topic, seq, data)?),
             schemas::INTERFACE => self.interface.push(parse(topic, seq, data)?),
+            schemas::SURFACE_CONTACT => self.surface_arrays.push(parse(topic, seq, data)?),
             _ => {}
         }
         Ok(())
@@ -449,6 +468,16 @@ impl Builder {
         for a in std::mem::take(&mut self.contact_arrays) {
             let points = a.records(model).map_err(|e| (schemas::CONTACT.to_string(), e))?;
             self.contact.entry(a.increment).or_default().extend(points);
+        }
+        for a in std::mem::take(&mut self.surface_arrays) {
+            let points = a
+                .records(model)
+                .map_err(|e| (schemas::SURFACE_CONTACT.to_string(), e))?;
+            self.surface.entry(a.increment).or_default().extend(points);
+            self.surface_offsets
+                .entry(a.increment)
+                .or_default()
+                .push(a.master_offset);
         }
         for p in std::mem::take(&mut self.packed_positions) {
             self.positions

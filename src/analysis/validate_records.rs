@@ -62,6 +62,19 @@ pub fn check_model(m: &ModelRecord) -> Result<(), String> {
             }
         }
     }
+    for c in &m.surface_contacts {
+        let what = format!("3D contact `{}`", c.name);
+        for &i in c.slave_nodes.iter().chain(c.master_facets.iter().flatten()) {
+            node(&what, i)?;
+        }
+        if c.areas.len() != c.slave_nodes.len() {
+            return Err(format!(
+                "{what} has {} slave nodes but {} areas",
+                c.slave_nodes.len(),
+                c.areas.len()
+            ));
+        }
+    }
     for c in &m.contacts {
         for s in &c.master_segments {
             node(&format!("master segment of contact `{}`", c.name), s[0])?;
@@ -121,6 +134,24 @@ pub(crate) fn check_records(m: &ModelRecord, b: &Builder) -> Result<(), (String,
                     "a point of increment {i} is in pair {}; the model has {} pairs",
                     p.pair,
                     m.contacts.len()
+                ),
+            );
+        }
+    }
+    for (&i, points) in &b.surface {
+        too_big(schemas::SURFACE_CONTACT, i)?;
+        let facets = |p: &crate::record::surface_contact::SurfacePointRecord| {
+            let info = &m.surface_contacts[p.pair];
+            let count = info.master_facets.len().max(usize::from(info.rigid.is_some()));
+            let bad = |f: Option<usize>| f.is_some_and(|f| f >= count);
+            info.slave_nodes[p.slave] != p.node || bad(p.facet) || bad(p.previous_facet)
+        };
+        if let Some(p) = points.iter().find(|p| facets(p)) {
+            return err(
+                schemas::SURFACE_CONTACT,
+                format!(
+                    "slave {} of pair `{}` at increment {i}: its node {} or facets {:?}, {:?} are not the model's",
+                    p.slave, p.pair_name, p.node, p.facet, p.previous_facet
                 ),
             );
         }

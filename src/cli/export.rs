@@ -2,10 +2,10 @@
 
 use super::out::outln;
 use super::BadInput;
-use contrail::analysis::export::{export_vtu, matches};
+use contrail::analysis::export::{export_vtu, matches, matches_solid};
 use contrail::analysis::recording::Recording;
-use contrail::model::Model;
-use contrail::scene::{build_model, parse, SceneSource};
+use contrail::model::AnyModel;
+use contrail::scene::{build_any, parse, AnyProblem, SceneSource};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -22,17 +22,16 @@ pub struct ExportArgs {
 
 /// The model of the run, rebuilt from the scene attached to the recording and its
 /// overrides (for the materials, which the recording does not hold).
-fn rebuild(r: &Recording) -> Result<Model, String> {
+fn rebuild(r: &Recording) -> Result<AnyModel, String> {
     let (name, text) = r.scene_file.clone().ok_or("the recording has no scene attachment")?;
     let origin = r.metadata.get("scene_origin").cloned().unwrap_or(name);
     let src = SceneSource { origin, text };
     let scene = parse(&src, &r.metadata_list("overrides")).map_err(|e| e.to_string())?;
-    let model = build_model(&src, &scene).map_err(|e| e.to_string())?;
-    if matches(&model, r) {
-        Ok(model)
-    } else {
-        Err("the scene attached to the recording no longer gives the recorded mesh".into())
-    }
+    let same = match build_any(&src, &scene).map_err(|e| e.to_string())? {
+        AnyProblem::Plane(p) => matches(&p.model, r).then_some(AnyModel::Plane(p.model)),
+        AnyProblem::Solid(p) => matches_solid(&p.model, r).then_some(AnyModel::Solid(p.model)),
+    };
+    same.ok_or_else(|| "the scene attached to the recording no longer gives the recorded mesh".into())
 }
 
 pub fn export(a: ExportArgs) -> anyhow::Result<ExitCode> {
@@ -47,7 +46,7 @@ pub fn export(a: ExportArgs) -> anyhow::Result<ExitCode> {
     if let Err(why) = &model {
         eprintln!("warning: stress and strain are not exported: {why}");
     }
-    let s = export_vtu(&r, model.as_ref().ok(), &pvd)
+    let s = export_vtu(&r, model.as_ref().ok().map(AnyModel::view), &pvd)
         .map_err(|e| BadInput(format!("{}: cannot write the VTU series: {e}", pvd.display())))?;
     outln!(
         "written      {} ({} increments{})",

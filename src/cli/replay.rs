@@ -57,6 +57,8 @@ pub fn replay_into(r: &Recording, view: &mut RerunView) -> Result<(), rerun_sink
             view.log(l)?;
         }
         let cr = crossings.get(&inc.increment).map_or(&[][..], Vec::as_slice);
+        let offsets = r.surface_offsets.get(&inc.increment).map_or(&[][..], Vec::as_slice);
+        view.surface(inc.increment, r.surface_at(inc.increment), offsets)?;
         view.increment(
             inc,
             positions.get(&inc.increment).copied(),
@@ -94,7 +96,7 @@ pub fn replay(a: ReplayArgs) -> anyhow::Result<ExitCode> {
         .into());
     }
     let r = Recording::open(&a.file).map_err(|e| BadInput(e.to_string()))?;
-    let stream = rerun_sink::open(&targets, r.scene()).map_err(|e| BadInput(e.to_string()))?;
+    let stream = rerun_sink::open(&targets, r.scene(), r.model.dim()).map_err(|e| BadInput(e.to_string()))?;
     let mut view = RerunView::new(stream, &r.model)?;
     replay_into(&r, &mut view)?;
     view.finish()?;
@@ -102,7 +104,7 @@ pub fn replay(a: ReplayArgs) -> anyhow::Result<ExitCode> {
         "replayed     {} ({} increments, {} contact records)",
         a.file.display(),
         r.increments.len(),
-        r.contact.values().map(Vec::len).sum::<usize>()
+        r.contact.values().map(Vec::len).sum::<usize>() + r.surface.values().map(Vec::len).sum::<usize>()
     )?;
     if let Some(p) = &targets.save {
         outln!("written      {}", p.display())?;

@@ -234,7 +234,7 @@ fn sinks<S: contrail::model::Dim>(
     }
     let targets = a.rerun.targets();
     if targets.any() {
-        let stream = rerun_sink::open(&targets, &problem.model.name).map_err(|e| BadInput(e.to_string()))?;
+        let stream = rerun_sink::open(&targets, &problem.model.name, S::D).map_err(|e| BadInput(e.to_string()))?;
         sinks.push(Box::new(RerunSink::new(stream, "rerun")));
     }
     if !a.quiet && std::io::stderr().is_terminal() {

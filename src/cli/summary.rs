@@ -67,7 +67,7 @@ impl Observer for Tracker {
         self.increments += 1;
         self.converged_iterations += rec.iterations;
         self.cutbacks += rec.cutbacks;
-        self.crossings += view.crossings.len();
+        self.crossings += view.crossings.len() + view.surface.iter().filter(|p| p.crossing).count();
         if let Some(c) = view.crossings.last() {
             let name = view
                 .model
@@ -81,6 +81,12 @@ impl Observer for Tracker {
                 c.from_segment,
                 c.to_segment,
             ));
+        }
+        let surface_crossing = view.surface.iter().rev().find(|p| p.crossing);
+        if let Some(p) = surface_crossing.filter(|_| view.crossings.is_empty()) {
+            let (a, b) = (p.previous_facet.unwrap_or(0), p.facet.unwrap_or(0));
+            let name = format!("{} node {}", p.pair_name, p.node);
+            self.last_crossing = Some((rec.increment, name, a, b));
         }
         self.last = Some(rec.clone());
         self.contact = view.contact.to_vec();
@@ -160,7 +166,8 @@ pub fn progress_lines(o: &mut String, t: &Tracker) {
     );
     let mut cr = count(t.crossings, "crossing", "crossings");
     if let Some((inc, p, a, b)) = &t.last_crossing {
-        let _ = write!(cr, " (last: {p}, segment {a} → {b} in increment {inc})");
+        let what = if t.surface.1 > 0 { "facet" } else { "segment" };
+        let _ = write!(cr, " (last: {p}, {what} {a} → {b} in increment {inc})");
     }
     row(o, "crossings", cr);
     if !t.contact.is_empty() {

@@ -69,6 +69,20 @@ pub struct SurfaceNow {
     /// one ([`super::transfer::TransferError`]: the facets folded onto each other, or the old
     /// point not found on the new facet): the point starts it afresh, as a point closing now.
     pub history_lost: bool,
+    /// The history carried onto `facet` from another one in this increment: where it was,
+    /// and what it became (see [`Carried`]).
+    pub carried: Option<Carried>,
+}
+
+/// A friction history carried from the facet of the last converged increment onto another
+/// one (the seed's transfer across a master boundary, eqs. 2–4 on surfaces): the facet it
+/// left, the history there (`ξ_A`, `T_α` on A) and the history on the new facet (`ξ_B`,
+/// `T_α` on B) as the pair's scheme made it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Carried {
+    pub from_facet: usize,
+    pub from: History,
+    pub to: History,
 }
 
 /// One point at a converged increment, for records, monitors and the equilibrium check.
@@ -85,6 +99,8 @@ pub struct SurfaceSnapshot {
     pub crossing: bool,
     /// See [`SurfaceNow::history_lost`].
     pub history_lost: bool,
+    /// See [`SurfaceNow::carried`].
+    pub carried: Option<Carried>,
 }
 
 /// The 3D contact state of all pairs.
@@ -233,6 +249,7 @@ impl SurfaceSystem {
                     force: now.force,
                     crossing: closed && hist.closed && hist.facet != now.facet,
                     history_lost: now.history_lost,
+                    carried: now.carried,
                 });
             }
         }
@@ -358,6 +375,11 @@ fn on_facets(
             };
             let carried = transfer(pair.transfer, &facet_a, &h, &Facet { x: facet_b }).ok();
             now.history_lost = carried.is_none();
+            now.carried = carried.map(|to| Carried {
+                from_facet: a,
+                from: h,
+                to,
+            });
             carried
         }
         (h, _) => h,

@@ -37,15 +37,7 @@ pub struct GmshSolidMesh {
     pub interior_surfaces: Vec<(String, usize)>,
 }
 
-/// The faces of the kernel's hexahedron, each with its outward normal `(x₁ − x₀) × (x₃ − x₀)`.
-const HEX_FACES: [[usize; 4]; 6] = [
-    [0, 3, 2, 1],
-    [4, 5, 6, 7],
-    [0, 1, 5, 4],
-    [1, 2, 6, 5],
-    [2, 3, 7, 6],
-    [3, 0, 4, 7],
-];
+use crate::model::hex_boundary::HEX_FACES;
 
 /// Elements by use: hexahedra (tag, node tags) and the node tags of the lower-dimensional
 /// elements per `(dim, entity)`, quadrilaterals apart.

@@ -5,6 +5,7 @@ pub mod box_mesh;
 pub mod contact;
 pub mod dim;
 pub mod gmsh;
+pub mod hex_boundary;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;

@@ -3,6 +3,7 @@
 //! JSON Schemas sit in `schemas/` next to those of the solver records.
 
 use super::real::{Real, Real2, Real2s};
+use super::surface_contact::SurfacePairInfo;
 use super::{ContactPointRecord, CrossingRecord};
 use crate::model::{Master, Model, ModelRef, RigidShape, Solid};
 use schemars::JsonSchema;
@@ -117,6 +118,10 @@ pub struct ModelRecord {
     /// Hexahedra of a 3D model: eight node ids in Gmsh/VTK order (`VTK_HEXAHEDRON`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hexahedra: Vec<[usize; 8]>,
+    /// The 3D contact pairs (node-to-surface; absent in 2D): `/surface_contact` holds
+    /// their points.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub surface_contacts: Vec<SurfacePairInfo>,
 }
 
 impl ModelRecord {
@@ -129,7 +134,8 @@ impl ModelRecord {
     }
 
     /// The record of a 3D model: its nodes, hexahedra and bodies (faces as quadrilaterals,
-    /// `element` the hexahedron's name, `model = "3d"`); no rigid bodies or contact pairs.
+    /// `element` the hexahedron's name, `model = "3d"`) and its node-to-surface pairs (rigid
+    /// masters among them); no 2D rigid bodies or pairs.
     pub fn solid(model: &Model<Solid>, end: f64) -> Self {
         let bodies = (model.bodies.iter())
             .map(|b| BodyInfo {
@@ -163,6 +169,9 @@ impl ModelRecord {
             dim: Some(3),
             nodes_3d: model.nodes.clone(),
             hexahedra: model.elements.iter().map(|e| e.nodes).collect(),
+            surface_contacts: (model.surface_contacts.iter())
+                .map(|p| SurfacePairInfo::of(model, p))
+                .collect(),
         }
     }
 
@@ -256,6 +265,7 @@ impl ModelRecord {
             dim: None,
             nodes_3d: Vec::new(),
             hexahedra: Vec::new(),
+            surface_contacts: Vec::new(),
         }
     }
 
@@ -294,6 +304,11 @@ impl ModelRecord {
                 .iter()
                 .zip(&other.contacts)
                 .all(|(a, b)| a.slaves == b.slaves && a.master == b.master)
+            && self.nodes_3d.len() == other.nodes_3d.len()
+            && self.hexahedra == other.hexahedra
+            && self.surface_contacts.len() == other.surface_contacts.len()
+            && (self.surface_contacts.iter().zip(&other.surface_contacts))
+                .all(|(a, b)| a.slave_nodes == b.slave_nodes && a.master == b.master)
     }
 }
 

@@ -20,6 +20,10 @@ pub struct Real2;
 pub struct Reals;
 /// A list of [`Real2`]s (points or vectors; its schema is that of `Vec<Real2>`).
 pub struct Real2s;
+/// Three [`Real`]s (a 3D vector or point).
+pub struct Real3;
+/// A list of [`Real3`]s (its schema is that of `Vec<Real3>`).
+pub struct Real3s;
 
 /// The string written for a non-finite value (`None` when finite).
 pub fn non_finite_name(x: f64) -> Option<&'static str> {
@@ -118,6 +122,53 @@ impl Real2 {
     }
 }
 
+impl Real3 {
+    pub fn serialize<S: Serializer>(x: &[f64; 3], s: S) -> Result<S::Ok, S::Error> {
+        let mut t = s.serialize_tuple(3)?;
+        for v in x {
+            t.serialize_element(&Item(*v))?;
+        }
+        t.end()
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+        let v: [ItemDe; 3] = serde::Deserialize::deserialize(d)?;
+        Ok(v.map(|x| x.0))
+    }
+}
+
+/// Serialises like [`Real3`] (inside sequences).
+#[derive(Clone, Copy)]
+pub struct Item3(pub [f64; 3]);
+
+impl serde::Serialize for Item3 {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        Real3::serialize(&self.0, s)
+    }
+}
+
+struct Item3De([f64; 3]);
+
+impl<'de> serde::Deserialize<'de> for Item3De {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Real3::deserialize(d).map(Item3De)
+    }
+}
+
+impl Real3s {
+    pub fn serialize<S: Serializer>(x: &[[f64; 3]], s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(x.len()))?;
+        for v in x {
+            seq.serialize_element(&Item3(*v))?;
+        }
+        seq.end()
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 3]>, D::Error> {
+        // a corrupt file may announce any length: `Vec`'s own visitor caps the hint
+        let v: Vec<Item3De> = serde::Deserialize::deserialize(d)?;
+        Ok(v.into_iter().map(|x| x.0).collect())
+    }
+}
+
 struct SeqVisitor;
 
 impl<'de> Visitor<'de> for SeqVisitor {
@@ -208,6 +259,22 @@ impl JsonSchema for Real2 {
     }
 }
 
+impl JsonSchema for Real3 {
+    fn schema_name() -> Cow<'static, str> {
+        "Real3".into()
+    }
+    fn json_schema(g: &mut SchemaGenerator) -> Schema {
+        let item = g.subschema_for::<Real>();
+        json_schema!({
+            "description": "A 3D vector (x, y, z) of Reals.",
+            "type": "array",
+            "items": item,
+            "minItems": 3,
+            "maxItems": 3
+        })
+    }
+}
+
 impl JsonSchema for Reals {
     fn schema_name() -> Cow<'static, str> {
         "Reals".into()
@@ -231,6 +298,32 @@ mod tests {
         b: [f64; 2],
         #[serde(with = "Reals")]
         c: Vec<f64>,
+    }
+
+    #[derive(Serialize, Deserialize, Debug)]
+    struct T3 {
+        #[serde(with = "Real3")]
+        a: [f64; 3],
+        #[serde(with = "Real3s")]
+        b: Vec<[f64; 3]>,
+    }
+
+    #[test]
+    fn triples_round_trip_with_non_finite_values_as_strings() {
+        let t = T3 {
+            a: [f64::NAN, -0.5, 2.0],
+            b: vec![[1.0, f64::INFINITY, 0.0], [0.25, 0.5, f64::NEG_INFINITY]],
+        };
+        let s = serde_json::to_string(&t).unwrap();
+        assert_eq!(
+            s,
+            r#"{"a":["NaN",-0.5,2.0],"b":[[1.0,"Infinity",0.0],[0.25,0.5,"-Infinity"]]}"#
+        );
+        let back: T3 = serde_json::from_str(&s).unwrap();
+        assert!(back.a[0].is_nan());
+        assert_eq!(back.b[1][2], f64::NEG_INFINITY);
+        assert!(serde_json::from_str::<T3>(r#"{"a":[1,2],"b":[]}"#).is_err());
+        assert!(serde_json::from_str::<T3>(r#"{"a":[1,2,3],"b":[[1,2]]}"#).is_err());
     }
 
     #[test]

@@ -1,11 +1,15 @@
-//! The record of one 3D (node-to-surface) contact point at a converged increment: its facet
-//! and convective coordinates `(ξ¹, ξ²)`, gap, normal force, trial and returned covariant
-//! tractions `T_α`, state, crossing flag, and the slave's position, contact point, normal
-//! and the force it receives as assembled.
+//! The records of 3D (node-to-surface) contact: one [`SurfacePointRecord`] per slave node
+//! at a converged increment (its facet and convective coordinates `(ξ¹, ξ²)`, gap, normal
+//! force, trial and returned covariant tractions `T_α`, state, the history carried across
+//! a facet edge), and the pairs as the `/model` message describes them
+//! ([`SurfacePairInfo`]).
 
+use super::real::{Real, Real2, Real3, Reals};
 use crate::contact::law::ContactState;
-use crate::contact3d::system::SurfaceSnapshot;
-use crate::model::{Model, Solid};
+use crate::contact3d::system::{Carried, SurfaceSnapshot};
+use crate::contact3d::transfer::scheme_name;
+use crate::model::{Model, RigidSurfaceShape, Solid, SurfaceMaster, SurfacePair};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// State of one 3D contact slave node at the end of an increment (NaN where a field has no
@@ -22,12 +26,17 @@ pub struct SurfacePointRecord {
     pub facet: Option<usize>,
     pub previous_facet: Option<usize>,
     /// Convective coordinates `(ξ¹, ξ²)` of the contact point on `facet`.
+    #[serde(with = "Real2")]
     pub xi: [f64; 2],
     /// Signed gap `ζ` (negative: penetration).
+    #[serde(with = "Real")]
     pub gap: f64,
+    #[serde(with = "Real")]
     pub normal_force: f64,
     /// Covariant trial and returned tangential tractions `T_α` on `facet`.
+    #[serde(with = "Real2")]
     pub trial_traction: [f64; 2],
+    #[serde(with = "Real2")]
     pub traction: [f64; 2],
     /// `open`, `stick` or `slip` (a closed point of a frictionless pair is `slip`).
     pub state: ContactState,
@@ -36,12 +45,47 @@ pub struct SurfacePointRecord {
     /// The friction history could not be carried onto `facet` (see
     /// `contact3d::system::SurfaceNow::history_lost`): the run warns at the first.
     pub history_lost: bool,
+    /// The friction history carried onto `facet` from `previous_facet` in this increment.
+    pub carried: Option<CarriedRecord>,
+    #[serde(with = "Real3")]
     pub position: [f64; 3],
+    #[serde(with = "Real3")]
     pub contact_point: [f64; 3],
     /// Unit outward normal of the master at the contact point.
+    #[serde(with = "Real3")]
     pub normal: [f64; 3],
     /// The contact force the slave node receives, as assembled (the master its negative).
+    #[serde(with = "Real3")]
     pub force: [f64; 3],
+}
+
+/// A friction history carried across a facet edge (seed eqs. 2–4 on surfaces): the facet
+/// the point left, its last converged contact point `ξ_A` and covariant traction `T_α` there,
+/// and both as the pair's transfer scheme made them on the new facet (`ξ_B`, `T_α` on B).
+/// The returned traction after the return map is the point's `traction`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct CarriedRecord {
+    pub from_facet: usize,
+    #[serde(with = "Real2")]
+    pub xi_from: [f64; 2],
+    #[serde(with = "Real2")]
+    pub traction_from: [f64; 2],
+    #[serde(with = "Real2")]
+    pub xi_to: [f64; 2],
+    #[serde(with = "Real2")]
+    pub traction_to: [f64; 2],
+}
+
+impl CarriedRecord {
+    pub fn of(c: &Carried) -> Self {
+        CarriedRecord {
+            from_facet: c.from_facet,
+            xi_from: c.from.xi,
+            traction_from: c.from.traction,
+            xi_to: c.to.xi,
+            traction_to: c.to.traction,
+        }
+    }
 }
 
 impl SurfacePointRecord {
@@ -66,10 +110,102 @@ impl SurfacePointRecord {
             state: e.map_or(ContactState::Open, |e| e.state),
             crossing: s.crossing,
             history_lost: s.history_lost,
+            carried: s.carried.as_ref().map(CarriedRecord::of),
             position,
             contact_point: e.map_or(nan3, |e| e.projection.point.rho),
             normal: e.map_or(nan3, |e| e.projection.point.normal),
             force: s.force,
         }
+    }
+}
+
+/// A 3D contact pair in `/model`: its slave nodes with their tributary areas, its master
+/// (a body's facets or a rigid surface) and its law.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SurfacePairInfo {
+    pub name: String,
+    /// Slave nodes, in slave order (`slave` of `/surface_contact` indexes this list).
+    pub slave_nodes: Vec<usize>,
+    /// Tributary area of each slave (the penalties are per unit area).
+    #[serde(with = "Reals")]
+    pub areas: Vec<f64>,
+    /// `body NAME` or `rigid NAME`.
+    pub master: String,
+    /// The master facets of a deformable face: four node ids each, counter-clockwise seen
+    /// from outside (`facet` of `/surface_contact` indexes this list; empty for a rigid
+    /// master).
+    pub master_facets: Vec<[usize; 4]>,
+    /// The rigid master's shape in its reference position (absent for facets); its
+    /// displacement at each increment is `/surface_contact` `master_offset`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rigid: Option<RigidShapeInfo>,
+    pub transfer: String,
+    /// Penalties per unit area and the friction coefficient.
+    #[serde(with = "Real")]
+    pub eps_n: f64,
+    #[serde(with = "Real")]
+    pub eps_t: f64,
+    #[serde(with = "Real")]
+    pub mu: f64,
+}
+
+/// A rigid analytic surface in its reference position.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum RigidShapeInfo {
+    /// The plane through `point` with unit outward `normal`.
+    Plane {
+        #[serde(with = "Real3")]
+        #[schemars(with = "Real3")]
+        point: [f64; 3],
+        #[serde(with = "Real3")]
+        #[schemars(with = "Real3")]
+        normal: [f64; 3],
+    },
+    Sphere {
+        #[serde(with = "Real3")]
+        #[schemars(with = "Real3")]
+        centre: [f64; 3],
+        #[serde(with = "Real")]
+        #[schemars(with = "Real")]
+        radius: f64,
+    },
+}
+
+impl SurfacePairInfo {
+    /// The description of `pair` of `model`.
+    pub fn of(model: &Model<Solid>, pair: &SurfacePair) -> Self {
+        let (master, master_facets, rigid) = match &pair.master {
+            SurfaceMaster::Facets { body, facets } => {
+                (format!("body {}", model.bodies[*body].name), facets.clone(), None)
+            }
+            SurfaceMaster::Rigid(r) => {
+                let shape = match r.shape {
+                    RigidSurfaceShape::Plane { point, normal } => RigidShapeInfo::Plane { point, normal },
+                    RigidSurfaceShape::Sphere { centre, radius } => RigidShapeInfo::Sphere { centre, radius },
+                };
+                (format!("rigid {}", r.name), Vec::new(), Some(shape))
+            }
+        };
+        SurfacePairInfo {
+            name: pair.name.clone(),
+            slave_nodes: pair.slaves.clone(),
+            areas: pair.areas.clone(),
+            master,
+            master_facets,
+            rigid,
+            transfer: scheme_name(pair.transfer).into(),
+            eps_n: pair.law.eps_n,
+            eps_t: pair.law.eps_t,
+            mu: pair.law.mu,
+        }
+    }
+}
+
+/// The displacement of a pair's rigid master at `t` (zero for facets).
+pub fn master_offset(pair: &SurfacePair, t: f64) -> [f64; 3] {
+    match &pair.master {
+        SurfaceMaster::Rigid(r) => r.offset(t),
+        SurfaceMaster::Facets { .. } => [0.0; 3],
     }
 }

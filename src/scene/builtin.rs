@@ -59,6 +59,10 @@ pub const BUILTINS: &[Builtin] = &[
         name: "cantilever-3d",
         text: include_str!("../../scenes/cantilever-3d.toml"),
     },
+    Builtin {
+        name: "hertz-3d",
+        text: include_str!("../../scenes/hertz-3d.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.

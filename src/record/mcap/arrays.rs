@@ -398,6 +398,7 @@ mod tests {
             dim: None,
             nodes_3d: vec![],
             hexahedra: vec![],
+            surface_contacts: vec![],
         }
     }
 

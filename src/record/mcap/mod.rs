@@ -8,3 +8,4 @@ pub mod json_text;
 pub mod out;
 pub mod schemas;
 pub mod sink;
+pub mod surface_arrays;

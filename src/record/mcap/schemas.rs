@@ -9,6 +9,7 @@
 use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactArrays, PressureArrays};
 use crate::record::mcap::foxglove::{FOXGLOVE_LOG_SCHEMA, FOXGLOVE_SCENE_SCHEMA};
+use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{CrossingMessage, ModelRecord, PackedPositions};
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use std::path::Path;
@@ -72,6 +73,7 @@ pub const LOG: &str = "/log";
 pub const OUTCOME: &str = "/outcome";
 pub const PRESSURE: &str = "/pressure";
 pub const INTERFACE: &str = "/interface";
+pub const SURFACE_CONTACT: &str = "/surface_contact";
 pub const FOXGLOVE_LOG: &str = "/foxglove/log";
 pub const FOXGLOVE_SCENE: &str = "/foxglove/scene";
 pub const FOXGLOVE_REFERENCE: &str = "/foxglove/reference";
@@ -94,6 +96,8 @@ pub const PRESSURE_ARRAYS: &str = "contrail.PressureArrays";
 /// Schema name of the format-3 `/positions` message (node coordinates packed as binary;
 /// formats 1 and 2 have `contrail.Positions`, a list of pairs).
 pub const PACKED_POSITIONS: &str = "contrail.PackedPositions";
+/// Schema name of `/surface_contact` (3D contact points, format 3).
+pub const SURFACE_CONTACT_ARRAYS: &str = "contrail.SurfaceContactArrays";
 
 /// Every channel, in the order they are registered in a recording.
 pub const CHANNELS: &[ChannelSpec] = &[
@@ -166,6 +170,13 @@ pub const CHANNELS: &[ChannelSpec] = &[
         file: "interface.schema.json",
         description: "one per two-pass contact pair at the increments that have /positions: both passes combined into the traction on the first pass's master face (each contact force once), totals and arrays over its nodes: node, s, position, normal, tributary, pressure, shear, state",
         schema: Source::Generated(|| schemars::schema_for!(InterfaceRecord)),
+    },
+    ChannelSpec {
+        topic: SURFACE_CONTACT,
+        schema_name: SURFACE_CONTACT_ARRAYS,
+        file: "surface-contact.schema.json",
+        description: "3D (node-to-surface) contact: one per converged increment and pair, every field an array over its slave nodes: slave, node, facet, previous facet, convective coordinates (xi1, xi2), gap, normal force, trial and returned covariant tractions, state, crossing, history lost, the history carried across a facet edge, positions, contact points, normals, forces; the rigid master's offset",
+        schema: Source::Generated(|| schemars::schema_for!(SurfaceContactArrays)),
     },
     ChannelSpec {
         topic: FOXGLOVE_LOG,

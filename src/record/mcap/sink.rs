@@ -18,8 +18,10 @@ use crate::record::mcap::foxglove::{ScenePoint, SceneView};
 pub use crate::record::mcap::out::ChunkCompression;
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
+use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
 use crate::record::pressure::{profiles, PressureLayout, PressureRecord};
+use crate::record::surface_contact::{master_offset, SurfacePointRecord};
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
@@ -393,6 +395,9 @@ impl<W: Write + Seek> McapSink<W> {
             };
             self.out.put(schemas::CROSSING, &msg)?;
         }
+        if let crate::model::ModelRef::Solid(solid) = view.model {
+            write_surface_contact(&mut self.out, solid, rec, view.surface)?;
+        }
         let positions = PositionsMessage::of(rec.increment, rec.t, view.model, view.u);
         let plane = view.model.plane();
         let layout = self.pressure_layout.get_or_insert_with(|| PressureLayout::new(plane));
@@ -429,4 +434,20 @@ impl<W: Write + Seek> McapSink<W> {
         });
         Ok(())
     }
+}
+
+/// The `/surface_contact` messages of an increment of a 3D model: one per pair.
+fn write_surface_contact<W: Write + Seek>(
+    out: &mut McapOut<W>,
+    model: &crate::model::Model<crate::model::Solid>,
+    rec: &IncrementRecord,
+    points: &[SurfacePointRecord],
+) -> Result<(), OutError> {
+    for (ip, pair) in model.surface_contacts.iter().enumerate() {
+        let offset = master_offset(pair, rec.t);
+        let mut msg = SurfaceContactArrays::of(rec.increment, rec.t, ip, offset, points);
+        msg.pair_name.clone_from(&pair.name);
+        out.put(schemas::SURFACE_CONTACT, &msg)?;
+    }
+    Ok(())
 }

@@ -4,3 +4,4 @@ pub mod curve;
 pub mod sink;
 pub mod style;
 pub mod view;
+pub mod view3d;

@@ -1,5 +1,5 @@
 //! rerun stream of a run: the deformed mesh, rigid surfaces, contact points and traction
-//! arrows in a 2D view (y up), the force–displacement curve in a second 2D view, Newton
+//! arrows in a 2D view (y up; a 3D view, z up, for a model of hexahedra), the force–displacement curve in a second 2D view, Newton
 //! residuals and a text log of crossings and messages, on the timelines `increment`
 //! (default) and `newton` (a running count of Newton iterations).
 //!
@@ -9,12 +9,13 @@
 use crate::record::interface::{interfaces, InterfaceLayout};
 use crate::record::messages::{ModelRecord, PositionsMessage};
 pub use crate::record::rrd::view::{RerunView, FLUSH_TIMEOUT};
+use crate::record::surface_contact::master_offset;
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Outcome};
 use crate::record::{Observer, ObserverError, RunInfo, StepView};
 use rerun::blueprint::components::{PanelState, PlayState};
 use rerun::blueprint::{
-    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial2DView, TextLogView, TimePanel, TimeSeriesView,
-    Vertical,
+    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial2DView, Spatial3DView, TextLogView, TimePanel,
+    TimeSeriesView, Vertical,
 };
 use rerun::{RecordingStream, RecordingStreamBuilder};
 use std::path::PathBuf;
@@ -57,18 +58,23 @@ fn stream_err(e: impl std::fmt::Display) -> RerunError {
 /// panel on the `increment` timeline following the latest increment): the model and the
 /// event log on the left; the force–displacement curve, the Newton residuals and the load
 /// level stacked on the right.
-pub fn blueprint() -> Blueprint {
+/// A 3D model (`dim` 3) is shown in a 3D view, z up.
+pub fn blueprint(dim: usize) -> Blueprint {
+    let model: rerun::blueprint::ContainerLike = match dim {
+        3 => Spatial3DView::new("model (z up)")
+            .with_origin("/")
+            .with_contents(["+ /scene/**"])
+            .into(),
+        _ => Spatial2DView::new("model (y up)")
+            .with_origin("/")
+            .with_contents(["+ /scene/**"])
+            .into(),
+    };
     Blueprint::new(
         Horizontal::new([
-            Vertical::new([
-                Spatial2DView::new("model (y up)")
-                    .with_origin("/")
-                    .with_contents(["+ /scene/**"])
-                    .into(),
-                TextLogView::new("events").with_origin("/events").into(),
-            ])
-            .with_row_shares(vec![0.74, 0.26])
-            .into(),
+            Vertical::new([model, TextLogView::new("events").with_origin("/events").into()])
+                .with_row_shares(vec![0.74, 0.26])
+                .into(),
             Vertical::new([
                 Spatial2DView::new("force–displacement")
                     .with_origin("/")
@@ -95,8 +101,9 @@ pub fn blueprint() -> Blueprint {
     )
 }
 
-/// Open a stream to `targets` (application `contrail`, recording named `name`).
-pub fn open(targets: &RerunTargets, name: &str) -> Result<RecordingStream, RerunError> {
+/// Open a stream to `targets` (application `contrail`, recording named `name`) for a model
+/// of dimension `dim`.
+pub fn open(targets: &RerunTargets, name: &str, dim: usize) -> Result<RecordingStream, RerunError> {
     let mut sinks: Vec<Box<dyn rerun::sink::LogSink>> = Vec::new();
     if let Some(path) = &targets.save {
         let sink = rerun::sink::FileSink::new(path.clone()).map_err(|e| RerunError::File {
@@ -122,7 +129,7 @@ pub fn open(targets: &RerunTargets, name: &str) -> Result<RecordingStream, Rerun
     }
     RecordingStreamBuilder::new("contrail")
         .recording_name(name)
-        .with_blueprint(blueprint())
+        .with_blueprint(blueprint(dim))
         .set_sinks(sinks)
         .map_err(stream_err)
 }
@@ -156,17 +163,14 @@ impl RerunSink {
 }
 
 impl Observer for RerunSink {
-    /// A 3D model is shown without its mesh (the view draws 2D meshes only): the curves,
-    /// residuals and logs of the run.
     fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
-        let model = model.plane();
         let stream = self
             .stream
             .take()
             .ok_or_else(|| ObserverError::new(&self.name, "started twice"))?;
-        self.interfaces = InterfaceLayout::new(model);
+        self.interfaces = InterfaceLayout::new(model.plane());
         self.view = Some(
-            RerunView::new(stream, &ModelRecord::new(model, info.settings.stepping.end))
+            RerunView::new(stream, &ModelRecord::of(model, info.settings.stepping.end))
                 .map_err(|e| ObserverError::new(&self.name, e))?,
         );
         Ok(())
@@ -177,7 +181,11 @@ impl Observer for RerunSink {
     }
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         let name = self.name.clone();
-        let positions = PositionsMessage::new(rec.increment, rec.t, view.model.plane(), view.u);
+        let positions = PositionsMessage::of(rec.increment, rec.t, view.model, view.u);
+        let offsets: Vec<[f64; 3]> = match view.model {
+            crate::model::ModelRef::Solid(m) => (m.surface_contacts.iter()).map(|p| master_offset(p, rec.t)).collect(),
+            crate::model::ModelRef::Plane(_) => Vec::new(),
+        };
         let joined = interfaces(
             &self.interfaces,
             view.model.plane(),
@@ -187,7 +195,8 @@ impl Observer for RerunSink {
             view.contact,
         );
         let v = self.view()?;
-        (v.increment(rec, Some(&positions), view.contact, view.crossings))
+        (v.surface(rec.increment, view.surface, &offsets))
+            .and_then(|()| v.increment(rec, Some(&positions), view.contact, view.crossings))
             .and_then(|()| v.interfaces(rec.increment, &joined))
             .map_err(|e| ObserverError::new(&name, e))
     }

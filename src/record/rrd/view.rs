@@ -5,6 +5,7 @@
 //! `/curve/**` (the force–displacement curve, see [`crate::record::rrd::curve`]), `/plots/newton`
 //! (per Newton iteration, timeline `newton` only), `/plots/increment/**` (per increment:
 //! Newton iterations, final residual, load level; timeline `increment` only) and `/events/**`.
+//! A 3D model is drawn by [`crate::record::rrd::view3d`] under the same `/scene`, z up.
 
 use crate::format::{plain, sig};
 use crate::record::interface::InterfaceRecord;
@@ -15,6 +16,8 @@ use crate::record::rrd::style::{
     point_colour, point_label, relative_residual, traction_arrows, TractionArrows, ARROW_FRACTION,
     ARROW_OFFSET_FRACTION, MESH, PRESSURE, REFERENCE, RETURNED, RIGID, TRIAL, Y_UP_SCALE,
 };
+use crate::record::rrd::view3d::SolidView;
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::{
     ContactPointRecord, CrossingRecord, IncrementRecord, IterationRecord, LogLevel, LogRecord, Outcome,
 };
@@ -45,6 +48,10 @@ pub struct RerunView {
     newton: i64,
     /// Reference force of the last Newton iteration (for the final residual of an increment).
     reference: f64,
+    /// The 3D part of the view (a model of hexahedra).
+    solid: Option<SolidView>,
+    /// `ΣN` of the 3D points given to [`Self::surface`] for the coming increment.
+    surface_normal: f64,
 }
 
 impl RerunView {
@@ -58,8 +65,14 @@ impl RerunView {
         let edges = model.edges();
         let (lo, hi) = bbox(&model.nodes);
         let size = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-9);
-        rec.log_static("scene", &rerun::Transform3D::from_scale(Y_UP_SCALE))
-            .map_err(e)?;
+        let solid = match model.dim() {
+            3 => Some(SolidView::new(&rec, model)?),
+            _ => {
+                rec.log_static("scene", &rerun::Transform3D::from_scale(Y_UP_SCALE))
+                    .map_err(e)?;
+                None
+            }
+        };
         let strips = |pos: &[[f64; 2]]| -> Vec<Vec<[f32; 2]>> {
             edges.iter().map(|e| vec![p32(pos[e[0]]), p32(pos[e[1]])]).collect()
         };
@@ -125,6 +138,8 @@ impl RerunView {
             curves,
             newton: 0,
             reference: 0.0,
+            solid,
+            surface_normal: 0.0,
         })
     }
 
@@ -166,7 +181,12 @@ impl RerunView {
             self.positions(p)?;
         }
         self.contact(contact, crossings)?;
-        let total_n: f64 = contact.iter().map(|c| c.normal_force).filter(|x| x.is_finite()).sum();
+        let total_n: f64 = contact
+            .iter()
+            .map(|c| c.normal_force)
+            .filter(|x| x.is_finite())
+            .sum::<f64>()
+            + std::mem::take(&mut self.surface_normal);
         let monitors = inc.all_monitors();
         let crossed = !crossings.is_empty();
         if monitors.is_empty() {
@@ -220,8 +240,28 @@ impl RerunView {
         self.rec.log("plots/load/t", &rerun::Scalars::single(inc.t)).map_err(e)
     }
 
+    /// The 3D contact points of increment `increment` and the rigid masters' offsets (one
+    /// per pair; see [`SolidView::contact`]); called before [`Self::increment`] of the same
+    /// increment, whose `ΣN` curve then includes them.
+    pub fn surface(
+        &mut self,
+        increment: usize,
+        points: &[SurfacePointRecord],
+        offsets: &[[f64; 3]],
+    ) -> Result<(), RerunError> {
+        let Some(solid) = &self.solid else {
+            return Ok(());
+        };
+        self.at_increment(increment);
+        self.surface_normal = points.iter().map(|p| p.normal_force).filter(|x| x.is_finite()).sum();
+        solid.contact(&self.rec, points, offsets)
+    }
+
     fn positions(&mut self, p: &PositionsMessage) -> Result<(), RerunError> {
         let e = stream_err;
+        if let Some(solid) = &self.solid {
+            return solid.positions(&self.rec, &p.nodes_3d);
+        }
         let strips: Vec<Vec<[f32; 2]>> = self
             .edges
             .iter()

@@ -1,4 +1,6 @@
-//! JSON-lines sink: every record as one line `{"kind": ..., "data": ...}`.
+//! JSON-lines sink: every record as one line `{"kind": ..., "data": ...}` (`run`,
+//! `iteration`, `increment`, `contact_point`, `crossing`, `surface_contact_point` for a 3D
+//! contact point, `log`, `outcome`).
 
 use crate::record::*;
 use serde::Serialize;
@@ -41,6 +43,9 @@ impl<W: Write> Observer for JsonlSink<W> {
         }
         for c in view.crossings {
             self.line("crossing", c)?;
+        }
+        for c in view.surface {
+            self.line("surface_contact_point", c)?;
         }
         Ok(())
     }

@@ -18,6 +18,7 @@
 //! The `.pvd` lists both per time step `t` (the load level) as `part` 0 and 1.
 
 use crate::element::fields::CentreFields;
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::ContactPointRecord;
 use base64::Engine;
 use std::io::{self, Write};
@@ -186,6 +187,47 @@ pub fn contact_piece(points: &[ContactPointRecord]) -> Piece {
                 3,
                 points.iter().flat_map(|p| [p.normal[0], p.normal[1], 0.0]).collect(),
             ),
+        ],
+        cell_data: Vec::new(),
+    }
+}
+
+/// The 3D contact points as vertices at the slave positions, with their gap, normal force
+/// `N` (`normal_traction`, as in 2D), the contact force and its tangential part (3
+/// components), convective coordinates `(ξ¹, ξ²)`, state code (0 open, 1 stick, 2 slip),
+/// facet (−1 when none is within reach), crossing flag, pair and the master's normal.
+pub fn surface_contact_piece(points: &[SurfacePointRecord]) -> Piece {
+    let n = points.len();
+    let f = |name: &str, get: fn(&SurfacePointRecord) -> f64| Array::f64(name, 1, points.iter().map(get).collect());
+    let v3 = |name: &str, get: fn(&SurfacePointRecord) -> [f64; 3]| {
+        Array::f64(name, 3, points.iter().flat_map(get).collect())
+    };
+    let i = |name: &str, get: fn(&SurfacePointRecord) -> i32| Array::i32(name, points.iter().map(get).collect());
+    Piece {
+        points: points.iter().map(|p| p.position).collect(),
+        connectivity: (0..n as i64).collect(),
+        offsets: (1..=n as i64).collect(),
+        types: vec![VTK_VERTEX; n],
+        point_data: vec![
+            f("gap", |p| p.gap),
+            f("normal_traction", |p| p.normal_force),
+            v3("force", |p| p.force),
+            v3("tangential_force", |p| {
+                let fn_: f64 = (0..3).map(|c| p.force[c] * p.normal[c]).sum();
+                std::array::from_fn(|c| {
+                    if fn_.is_finite() {
+                        p.force[c] - fn_ * p.normal[c]
+                    } else {
+                        0.0
+                    }
+                })
+            }),
+            Array::f64("xi", 2, points.iter().flat_map(|p| p.xi).collect()),
+            i("state", |p| p.state.code() as i32),
+            i("facet", |p| p.facet.map_or(-1, |s| s as i32)),
+            i("crossing", |p| i32::from(p.crossing)),
+            i("pair", |p| p.pair as i32),
+            v3("normal", |p| p.normal),
         ],
         cell_data: Vec::new(),
     }

@@ -7,7 +7,10 @@
 use crate::element::fields::{centre_fields_with, hex8_centre_fields, CentreFields};
 use crate::model::{AnyModel, Model, ModelRef, Solid};
 use crate::record::atomic_file::AtomicFile;
-use crate::record::vtu::file::{contact_piece, mesh_piece, solid_piece, write_pvd, write_vtu, Piece, PvdEntry};
+use crate::record::surface_contact::SurfacePointRecord;
+use crate::record::vtu::file::{
+    contact_piece, mesh_piece, solid_piece, surface_contact_piece, write_pvd, write_vtu, Piece, PvdEntry,
+};
 use crate::record::{ContactPointRecord, IncrementRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -123,9 +126,13 @@ pub struct VtuSink {
     every: usize,
     name: String,
     /// The last converged increment if it has not been written yet.
-    pending: Option<(usize, f64, Vec<f64>, Vec<ContactPointRecord>)>,
+    pending: Option<Pending>,
     model: Option<AnyModel>,
 }
+
+/// An increment kept until `finish` (its increment number, `t`, displacements and contact
+/// points in 2D and 3D).
+type Pending = (usize, f64, Vec<f64>, Vec<ContactPointRecord>, Vec<SurfacePointRecord>);
 
 impl VtuSink {
     /// A sink writing `path` (`.pvd`) and the directory beside it; `every` ≥ 1.
@@ -149,13 +156,18 @@ impl VtuSink {
         increment: usize,
         t: f64,
         u: &[f64],
-        contact: &[ContactPointRecord],
+        (contact, surface): (&[ContactPointRecord], &[SurfacePointRecord]),
     ) -> io::Result<()> {
-        let mesh = match model {
-            ModelRef::Plane(model) => model_piece(model, u),
-            ModelRef::Solid(model) => solid_model_piece(model, u),
+        let (mesh, contact) = match model {
+            ModelRef::Plane(model) => (
+                model_piece(model, u),
+                (!model.contacts.is_empty()).then(|| contact_piece(contact)),
+            ),
+            ModelRef::Solid(model) => (
+                solid_model_piece(model, u),
+                (!model.surface_contacts.is_empty()).then(|| surface_contact_piece(surface)),
+            ),
         };
-        let contact = (!model.plane().contacts.is_empty()).then(|| contact_piece(contact));
         self.series.step(increment, t, &mesh, contact.as_ref())
     }
 }
@@ -169,17 +181,18 @@ impl Observer for VtuSink {
     fn increment(&mut self, rec: &IncrementRecord, view: &StepView) -> Result<(), ObserverError> {
         if rec.increment.is_multiple_of(self.every) {
             self.pending = None;
-            self.write(view.model, rec.increment, rec.t, view.u, view.contact)
+            self.write(view.model, rec.increment, rec.t, view.u, (view.contact, view.surface))
                 .map_err(|e| self.err(e))
         } else {
-            self.pending = Some((rec.increment, rec.t, view.u.to_vec(), view.contact.to_vec()));
+            let (contact, surface) = (view.contact.to_vec(), view.surface.to_vec());
+            self.pending = Some((rec.increment, rec.t, view.u.to_vec(), contact, surface));
             Ok(())
         }
     }
 
     fn finish(&mut self, _outcome: &Outcome) -> Result<(), ObserverError> {
-        if let (Some((increment, t, u, contact)), Some(model)) = (self.pending.take(), self.model.take()) {
-            self.write(model.view(), increment, t, &u, &contact)
+        if let (Some((increment, t, u, contact, surface)), Some(model)) = (self.pending.take(), self.model.take()) {
+            self.write(model.view(), increment, t, &u, (&contact, &surface))
                 .map_err(|e| self.err(e))?;
         }
         self.series.finish().map_err(|e| self.err(e))

@@ -1,0 +1,179 @@
+//! 3D contact in the recordings: `/surface_contact` (one message of arrays per increment and
+//! pair) reads back to the records the solver handed its observers, bit for bit (NaN
+//! included); the crossings of facet edges carry the history before and after transfer;
+//! `/model` describes the pairs and the rigid master, whose offset each message states;
+//! `inspect` summarises the 3D contact and a replay writes the 3D rerun view.
+
+use contrail::analysis::inspect::{inspect, render};
+use contrail::analysis::recording::Recording;
+use contrail::problem::Problem;
+use contrail::record::mcap::sink::{McapOptions, McapSink};
+use contrail::record::rrd::sink::{self as rerun_sink, RerunTargets, RerunView};
+use contrail::record::surface_contact::{RigidShapeInfo, SurfacePointRecord};
+use contrail::record::{Fanout, Memory};
+use contrail::solver::run;
+use std::io::Cursor;
+use std::sync::atomic::AtomicBool;
+
+/// A block pressed onto a slab, then dragged at 30° to the slab's mesh lines across its
+/// facets (μ = 0.3); the slab's nodes are offset from the block's, so that no slave node
+/// starts on a facet edge.
+const SLIDE: &str = r#"name = "slide-3d-small"
+[[body]]
+name = "slab"
+material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
+mesh = { kind = "box", origin = [-0.55, -0.45, -0.5], size = [4.0, 3.0, 0.5], elements = [8, 6, 1] }
+[[body]]
+name = "block"
+material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
+mesh = { kind = "box", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 0.5], elements = [2, 2, 1] }
+[[fix]]
+body = "slab"
+nodes = "zmin"
+components = ["x", "y", "z"]
+[[fix]]
+body = "block"
+nodes = "zmax"
+components = ["z"]
+value = [[0.0, 0.0], [1.0, -0.01], [2.0, -0.01]]
+[[fix]]
+body = "block"
+nodes = "zmax"
+components = ["x"]
+value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.2165]]
+[[fix]]
+body = "block"
+nodes = "zmax"
+components = ["y"]
+value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.125]]
+[[contact]]
+name = "base"
+slave = { body = "block", nodes = "zmin" }
+master = { body = "slab", face = "zmax" }
+eps_n = 1.0e6
+eps_t = 1.0e5
+mu = 0.3
+[stepping]
+end = 2.0
+increments = 8
+"#;
+
+fn problem(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, contrail::record::RunInfo) {
+    let src = contrail::scene::SceneSource {
+        origin: origin.into(),
+        text: text.into(),
+    };
+    let file = contrail::scene::parse(&src, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let contrail::scene::AnyProblem::Solid(p) = contrail::scene::build_any(&src, &file).unwrap() else {
+        panic!("{origin}: not a 3D scene")
+    };
+    let info = contrail::run_info(&src, &[], &p);
+    (p, info)
+}
+
+/// Run into an in-memory MCAP and a `Memory`.
+fn record(origin: &str, text: &str) -> (Recording, Memory) {
+    let (p, info) = problem(origin, text);
+    let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", McapOptions::default()).unwrap();
+    let mut mem = Memory::default();
+    let mut fan = Fanout::default();
+    fan.sinks.push(&mut sink);
+    fan.sinks.push(&mut mem);
+    run(&p, &info, &mut fan, &AtomicBool::new(false)).unwrap_or_else(|e| panic!("{origin}: {e}"));
+    drop(fan);
+    let bytes = sink.into_inner().unwrap().into_inner();
+    (Recording::from_bytes(&bytes, origin).unwrap(), mem)
+}
+
+fn json(p: &SurfacePointRecord) -> String {
+    serde_json::to_string(p).unwrap()
+}
+
+#[test]
+fn a_sliding_block_reads_back_bit_for_bit_with_its_crossings_and_carried_histories() {
+    let (r, mem) = record("slide-3d-small.toml", SLIDE);
+    assert_eq!(r.model.surface_contacts.len(), 1);
+    let pair = &r.model.surface_contacts[0];
+    assert_eq!((pair.slave_nodes.len(), pair.master_facets.len()), (9, 48));
+    assert_eq!(pair.master, "body slab");
+    assert!(
+        (pair.areas.iter().sum::<f64>() - 1.0).abs() < 1e-12,
+        "the block's face is 1 × 1"
+    );
+    assert_eq!(r.surface.len(), mem.surface.len());
+    for (inc, written) in mem.surface.iter().enumerate() {
+        let read = r.surface_at(inc + 1);
+        assert_eq!(read.len(), written.len(), "increment {}", inc + 1);
+        for (a, b) in written.iter().zip(read) {
+            // JSON of both sides: NaN compares equal, and every bit of every double counts
+            assert_eq!(json(a), json(b), "increment {}", inc + 1);
+            assert_eq!(a.xi.map(f64::to_bits), b.xi.map(f64::to_bits));
+        }
+    }
+    let crossings: Vec<&SurfacePointRecord> = r.surface.values().flatten().filter(|p| p.crossing).collect();
+    assert!(crossings.len() >= 4, "{} crossings", crossings.len());
+    for c in &crossings {
+        let carried = c.carried.expect("a frictional crossing carries its history");
+        assert_eq!(Some(carried.from_facet), c.previous_facet);
+        assert_ne!(c.previous_facet, c.facet);
+        // the old contact point, seen from the new facet, lies beyond its edge
+        assert!(carried.xi_to.iter().any(|x| x.abs() > 1.0), "{carried:?}");
+        assert!(!c.history_lost);
+    }
+    let report = inspect(&r);
+    assert_eq!(report.crossings, crossings.len());
+    let text = render(&report);
+    assert!(
+        text.contains("base: 9 slave nodes against the master body slab (48 facets) (continuous, μ = 0.3)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("3D contact         base: 9 of 9 closed at increment 8"),
+        "{text}"
+    );
+    assert!(text.contains("/surface_contact"), "{text}");
+}
+
+#[test]
+fn the_rigid_sphere_is_described_once_and_its_offset_recorded_at_every_increment() {
+    let (r, _) = record("hertz-3d", contrail::scene::builtin::find("hertz-3d").unwrap().text);
+    let pair = &r.model.surface_contacts[0];
+    assert_eq!(pair.master, "rigid ball");
+    assert!(pair.master_facets.is_empty());
+    assert_eq!(
+        pair.rigid,
+        Some(RigidShapeInfo::Sphere {
+            centre: [0.0, 0.0, 1.0],
+            radius: 1.0
+        })
+    );
+    assert_eq!(r.surface_offsets.len(), 4);
+    for (inc, offsets) in &r.surface_offsets {
+        let t = r.increments[inc - 1].t;
+        assert_eq!(offsets.len(), 1);
+        assert!((offsets[0][2] + 0.005 * t).abs() < 1e-15, "{offsets:?} at t = {t}");
+    }
+    let last = r.surface.values().last().unwrap();
+    assert!(last.iter().filter(|p| p.facet == Some(0)).count() >= 4);
+    // an open point out of reach has no contact point: NaN survives the recording
+    assert!(last.iter().any(|p| p.contact_point[0].is_nan() || p.gap > 0.0));
+    // the 3D rerun view of a replay
+    let dir = std::env::temp_dir().join(format!("contrail-rerun-3d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("replay.rrd");
+    let targets = RerunTargets {
+        save: Some(path.clone()),
+        ..RerunTargets::default()
+    };
+    let mut view = RerunView::new(rerun_sink::open(&targets, "hertz-3d", 3).unwrap(), &r.model).unwrap();
+    for inc in &r.increments {
+        let offsets = r.surface_offsets.get(&inc.increment).map_or(&[][..], Vec::as_slice);
+        view.surface(inc.increment, r.surface_at(inc.increment), offsets)
+            .unwrap();
+        let positions = r.positions.iter().find(|p| p.increment == inc.increment);
+        view.increment(inc, positions, &[], &[]).unwrap();
+    }
+    view.finish().unwrap();
+    assert!(std::fs::metadata(&path).unwrap().len() > 10_000);
+    std::fs::remove_dir_all(&dir).ok();
+}
