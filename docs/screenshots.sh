@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Screenshots of the rerun view of the built-in scenes strip-channel and hertz, rendered
-# headless in the viewer's dark and light themes (as in the README):
-#   docs/view-strip-channel.png        docs/view-hertz.png         dark
-#   docs/view-strip-channel-light.png  docs/view-hertz-light.png   light
-# CONTRAIL_SCREENSHOT_THEMES="dark" (or "light") renders one theme only.
+# Screenshots of the rerun view of the built-in scenes strip-channel, hertz and slide-3d,
+# rendered headless in the viewer's dark and light themes (as in the README):
+#   docs/view-strip-channel.png        docs/view-hertz.png         docs/view-slide-3d.png         dark
+#   docs/view-strip-channel-light.png  docs/view-hertz-light.png   docs/view-slide-3d-light.png   light
+# CONTRAIL_SCREENSHOT_THEMES="dark" (or "light") renders one theme only;
+# CONTRAIL_SCREENSHOT_SCENES="slide-3d" (names separated by spaces) only those scenes.
 #
 # Needs: Xvfb and a software Vulkan/GL driver (Debian/Ubuntu:
 #   apt-get install -y xvfb mesa-vulkan-drivers libgl1-mesa-dri)
@@ -87,6 +88,7 @@ PY
 
 shot() {
     local name="$1"; shift
+    case " ${CONTRAIL_SCREENSHOT_SCENES:-$name} " in *" $name "*) ;; *) return 0 ;; esac
     echo "== $name: run"
     "$BIN" run "$@" --quiet --rerun-save "$TMP/$name.rrd" >"$TMP/$name.log"
     for theme in $THEMES; do
@@ -119,3 +121,5 @@ shot() {
 # it takes the screenshot (with 1200 it showed whatever increment it had loaded by then)
 shot strip-channel strip-channel --set stepping.increments=300
 shot hertz hertz
+# the 3D view: a block dragged across a slab's facets (friction arrows, crossings in the log)
+shot slide-3d slide-3d

@@ -4,6 +4,7 @@
 //! `/model` describes the pairs and the rigid master, whose offset each message states;
 //! `inspect` summarises the 3D contact and a replay writes the 3D rerun view.
 
+use contrail::analysis::diff::{diff, Align, SURFACE_FIELDS};
 use contrail::analysis::inspect::{inspect, render};
 use contrail::analysis::recording::Recording;
 use contrail::problem::Problem;
@@ -176,4 +177,27 @@ fn the_rigid_sphere_is_described_once_and_its_offset_recorded_at_every_increment
     view.finish().unwrap();
     assert!(std::fs::metadata(&path).unwrap().len() > 10_000);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn diff_compares_the_3d_points_field_by_field() {
+    let text = contrail::scene::builtin::find("hertz-3d").unwrap().text;
+    let (a, _) = record("hertz-3d", text);
+    let same = diff(&a, &a, Align::Increment, 1e-12).unwrap();
+    assert!(same.within_tolerance);
+    for f in SURFACE_FIELDS {
+        let fd = same.fields.iter().find(|d| d.field == *f).unwrap();
+        assert_eq!(fd.compared, 4 * 81, "{f}");
+    }
+    let (b, _) = record("hertz-3d", &text.replace("eps_n = 1.0e7", "eps_n = 2.0e7"));
+    let report = diff(&a, &b, Align::Increment, 1e-6).unwrap();
+    assert!(!report.within_tolerance);
+    let normal = report.fields.iter().find(|d| d.field == "normal_force").unwrap();
+    let at = normal
+        .first_divergence
+        .as_ref()
+        .expect("a stiffer penalty changes the forces");
+    assert!(at.point.as_deref().unwrap().starts_with("indent/"), "{at:?}");
+    let facets = report.fields.iter().find(|d| d.field == "facet").unwrap();
+    assert_eq!(facets.beyond_tolerance, 0);
 }
