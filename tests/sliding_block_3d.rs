@@ -49,8 +49,8 @@
 //! the free-border rule of `contact3d::system::on_facets`) slides with `F_t/F_n` down to
 //! 0.279 (−7 %) at the increments where slab nodes come under the block's leading edge: they
 //! close without a friction history and stick first; ε_N = ε_T = 1e7 keeps the ratio within
-//! 0.4 % but takes 1248 Newton iterations and 27 cut-backs (a crossing step's tangent lacks
-//! the transfer's dependence on the nodes, `contact3d::transfer`).
+//! 0.4 % but takes 1248 Newton iterations and 27 cut-backs (not investigated; a suspect: a
+//! crossing step's tangent lacks the transfer's dependence on the nodes, `contact3d::transfer`).
 mod common;
 
 use contrail::contact::law::ContactState;
