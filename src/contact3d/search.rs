@@ -64,6 +64,44 @@ pub fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> [[f64; 3]; 2]
     b
 }
 
+/// How far past a free border (in `ξ`: 0.05 % of the facet's width) a point closed on the
+/// facet at the last converged increment, and still penetrating, stays paired with it (the
+/// 2D rule of `contact::pairing::FREE_END_HOLD`): two faces meshed edge to edge keep their
+/// border nodes at `ξ = ±1` only to the strain's mismatch.
+pub const FREE_BORDER_HOLD: f64 = 1e-3;
+
+/// Per facet of a face, which of its edges are the face's free border (no other facet of the
+/// face has both its nodes): edge `e` runs from node `e` to node `e + 1 (mod 4)`, i.e. edges
+/// 0–3 lie at `ξ² = −1`, `ξ¹ = 1`, `ξ² = 1`, `ξ¹ = −1` ([`super::surface::NODE_XI`]).
+pub fn free_borders(facets: &[[usize; 4]]) -> Vec<[bool; 4]> {
+    let edge = |f: &[usize; 4], e: usize| {
+        let (a, b) = (f[e], f[(e + 1) % 4]);
+        (a.min(b), a.max(b))
+    };
+    let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+    for f in facets {
+        for e in 0..4 {
+            *count.entry(edge(f, e)).or_default() += 1;
+        }
+    }
+    (facets.iter())
+        .map(|f| std::array::from_fn(|e| count[&edge(f, e)] == 1))
+        .collect()
+}
+
+/// How far `ξ` lies past the free border of a facet with free edges `free` (0 when it is
+/// within `[−1, 1]` across each of them): a point there is beyond the master face, on its
+/// facets' extension only, and is not paired (2D: a point past a master's free end).
+pub fn past_free_border(xi: [f64; 2], free: [bool; 4]) -> f64 {
+    let across = [
+        (free[3], -1.0 - xi[0]),
+        (free[1], xi[0] - 1.0),
+        (free[0], -1.0 - xi[1]),
+        (free[2], xi[1] - 1.0),
+    ];
+    (across.iter()).filter(|(f, _)| *f).map(|&(_, d)| d).fold(0.0, f64::max)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

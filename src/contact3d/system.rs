@@ -14,7 +14,7 @@
 use super::master::{facet_point, plane_facet, slave_block, sphere_point};
 use super::point::{History, PointEval, DOFS};
 use super::projection::{project, INSIDE_TOLERANCE};
-use super::search::{bounding_box, FacetGrid};
+use super::search::{bounding_box, free_borders, past_free_border, FacetGrid, FREE_BORDER_HOLD};
 use super::surface::Facet;
 use super::transfer::transfer;
 use crate::contact::law::ContactState;
@@ -111,6 +111,8 @@ pub struct SurfaceSystem {
     /// The iterate a line search starts from.
     base: Vec<Vec<SurfaceNow>>,
     grids: Vec<Option<FacetGrid>>,
+    /// Per pair with a facet master, its facets' free border edges ([`free_borders`]).
+    borders: Vec<Vec<[bool; 4]>>,
     /// Half-width of a rigid plane's fixed facet ([`plane_facet`]).
     plane_half: f64,
 }
@@ -140,6 +142,12 @@ impl SurfaceSystem {
             current: model.surface_contacts.iter().map(per_point).collect(),
             base: model.surface_contacts.iter().map(per_point).collect(),
             grids: vec![None; model.surface_contacts.len()],
+            borders: (model.surface_contacts.iter())
+                .map(|p| match &p.master {
+                    SurfaceMaster::Facets { facets, .. } => free_borders(facets),
+                    SurfaceMaster::Rigid(_) => vec![],
+                })
+                .collect(),
             plane_half: 4.0 * (model.size() + travel),
         }
     }
@@ -209,16 +217,8 @@ impl SurfaceSystem {
             for is in 0..pair.slaves.len() {
                 let hist = self.committed[ip][is];
                 let start = self.current[ip][is].facet.or(hist.facet);
-                let now = evaluate_point(
-                    cfg,
-                    pair,
-                    is,
-                    &hist,
-                    start,
-                    self.grids[ip].as_ref(),
-                    self.plane_half,
-                    assemble,
-                );
+                let search = (self.grids[ip].as_ref(), start, self.borders[ip].as_slice());
+                let now = evaluate_point(cfg, pair, is, &hist, search, self.plane_half, assemble);
                 self.current[ip][is] = now;
             }
         }
@@ -286,7 +286,8 @@ fn facet_grid(cfg: &SurfaceConfig, pair: &SurfacePair) -> Option<FacetGrid> {
 /// inside it within reach; else, of the facets within reach, the one it projects inside
 /// with the smallest `|ζ|`; else (`x` beyond every facet's edge: a convex edge or the
 /// face's border) the one whose projection lies least outside it, its extension then
-/// carrying the point. `None`: no facet within the search radius.
+/// carrying the point (past the face's free border the caller leaves it unpaired, see
+/// [`on_facets`]). `None`: no facet within the search radius.
 pub fn locate(
     cfg: &SurfaceConfig,
     facets: &[[usize; 4]],
@@ -329,21 +330,19 @@ pub fn locate(
 }
 
 /// Pair and evaluate slave `is` of `pair`; assemble it when closed.
-#[allow(clippy::too_many_arguments)]
 fn evaluate_point(
     cfg: &SurfaceConfig,
     pair: &SurfacePair,
     is: usize,
     hist: &SurfaceHistory,
-    start: Option<usize>,
-    grid: Option<&FacetGrid>,
+    (grid, start, borders): (Option<&FacetGrid>, Option<usize>, &[[bool; 4]]),
     plane_half: f64,
     assemble: &mut LocalSink,
 ) -> SurfaceNow {
     match &pair.master {
         SurfaceMaster::Facets { facets, .. } => {
             let grid = grid.expect("a facet master has a grid");
-            on_facets(cfg, pair, is, hist, facets, (grid, start), assemble)
+            on_facets(cfg, pair, is, hist, facets, (grid, start, borders), assemble)
         }
         SurfaceMaster::Rigid(rigid) => on_rigid(cfg, pair, is, hist, rigid, plane_half, assemble),
     }
@@ -351,13 +350,16 @@ fn evaluate_point(
 
 /// Slave `is` against the facets of a deformable face: located (from `start`), its history
 /// carried onto the facet it is on now, evaluated, and assembled on its 5 nodes when closed.
+/// A point whose contact point lies past the face's free border (`borders`) is not paired
+/// ([`past_free_border`]), unless it was closed on that facet at the last converged
+/// increment and is still penetrating, within [`FREE_BORDER_HOLD`] of the border.
 fn on_facets(
     cfg: &SurfaceConfig,
     pair: &SurfacePair,
     is: usize,
     hist: &SurfaceHistory,
     facets: &[[usize; 4]],
-    (grid, start): (&FacetGrid, Option<usize>),
+    (grid, start, borders): (&FacetGrid, Option<usize>, &[[bool; 4]]),
     assemble: &mut LocalSink,
 ) -> SurfaceNow {
     let node = pair.slaves[is];
@@ -390,6 +392,11 @@ fn on_facets(
         now.facet = None;
         return now;
     };
+    let past = past_free_border(e.projection.point.xi, borders[f]);
+    let held = hist.closed && hist.facet == Some(f) && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
+    if past > INSIDE_TOLERANCE && !held {
+        return SurfaceNow::default();
+    }
     now.eval = Some(in_model_coordinates(e, origin));
     if e.state != ContactState::Open {
         let nodes = [node, facets[f][0], facets[f][1], facets[f][2], facets[f][3]];

@@ -1,6 +1,7 @@
 //! Tests of the 3D contact state: pairing, history transfer and its failure, commit.
 
 use super::*;
+use crate::contact3d::search::{free_borders, past_free_border};
 use crate::contact3d::transfer::Scheme;
 use crate::model::{ContactLaw, SurfaceMaster, SurfacePair};
 
@@ -111,4 +112,55 @@ fn a_history_that_cannot_be_carried_onto_a_folded_facet_is_reported_lost() {
     };
     let snapshot = system.snapshots(&cfg)[0];
     assert!(snapshot.history_lost && snapshot.crossing);
+}
+
+#[test]
+fn the_free_border_of_two_facets_side_by_side_is_every_edge_but_the_shared_one() {
+    let model = two_facets(false);
+    let SurfaceMaster::Facets { facets, .. } = &model.surface_contacts[0].master else {
+        unreachable!()
+    };
+    // facet 0's edge 1 (ξ¹ = 1) and facet 1's edge 3 (ξ¹ = −1) are the shared edge 1–4
+    assert_eq!(
+        free_borders(facets),
+        vec![[true, false, true, true], [true, true, true, false]]
+    );
+    assert_eq!(past_free_border([1.5, 0.0], [true, false, true, true]), 0.0);
+    assert_eq!(past_free_border([-1.5, 0.25], [true, false, true, true]), 0.5);
+    assert_eq!(past_free_border([0.0, 1.25], [true, true, false, true]), 0.0);
+}
+
+#[test]
+fn a_point_that_slides_past_the_faces_free_border_opens() {
+    // before the rule, it stayed paired with the extension of facet 1 (ξ¹ = 1.6) and was
+    // pushed by a surface that is not there
+    let model = two_facets(false);
+    let (_, now) = press_then_move(&model, [2.3, 0.5, -1e-3]);
+    assert_eq!(now.facet, None);
+    assert!(now.eval.is_none() && now.force == [0.0; 3]);
+}
+
+#[test]
+fn a_closed_point_just_past_the_free_border_is_held_and_a_fresh_one_is_not() {
+    let model = two_facets(false);
+    // first onto facet 1, where it is committed closed …
+    let (mut system, now) = press_then_move(&model, [1.9, 0.5, -1e-3]);
+    assert_eq!(now.facet, Some(1));
+    system.commit();
+    system.reset_current();
+    // … then 2e-4 of the facet's width past its free end (ξ¹ = 1.0004): held
+    let u = slave_at(&model, [2.0002, 0.5, -1e-3]);
+    let cfg = SurfaceConfig {
+        model: &model,
+        u: &u,
+        t: 0.0,
+    };
+    system.evaluate(&cfg, &mut |_, _, _, _, _| {});
+    let held = system.current[0][0];
+    assert_eq!(held.facet, Some(1));
+    assert!(held.eval.is_some_and(|e| e.state != ContactState::Open));
+    // a point there without that history is beyond the face
+    let mut fresh = SurfaceSystem::new(Some(&model));
+    fresh.evaluate(&cfg, &mut |_, _, _, _, _| {});
+    assert_eq!(fresh.current[0][0].facet, None);
 }
