@@ -94,7 +94,12 @@ const FINE: Case = Case {
 
 fn scene(c: &Case) -> String {
     let ([sx, sy, sz], [bx, by, bz], n) = (c.slab, c.block, c.increments);
-    let (dx, dy) = (DRAG * c.angle.to_radians().cos(), DRAG * c.angle.to_radians().sin());
+    // to 12 decimals, as a scene file writes them (the built-in `slide-3d` is the coarse case)
+    let round = |v: f64| (v * 1e12).round() / 1e12;
+    let (dx, dy) = (
+        round(DRAG * c.angle.to_radians().cos()),
+        round(DRAG * c.angle.to_radians().sin()),
+    );
     let top = |component: &str, values: [f64; 3]| {
         let [a, b, e] = values;
         format!(
@@ -310,4 +315,26 @@ fn the_straightforward_transfer_does_not_slide_at_coulombs_ratio() {
     );
     assert!(worst_error(&s) < -20.0, "F_t/F_n off μ by {:.3} %", worst_error(&s));
     assert!(s.angle > 20.0, "friction force {:.3}° off the drag", s.angle);
+}
+
+#[test]
+fn the_built_in_slide_3d_is_the_coarse_case() {
+    let model = |origin: &str, text: &str| {
+        let src = contrail::scene::SceneSource {
+            origin: origin.into(),
+            text: text.into(),
+        };
+        let file = contrail::scene::parse(&src, &[]).unwrap();
+        let contrail::scene::AnyProblem::Solid(mut p) = contrail::scene::build_any(&src, &file).unwrap() else {
+            panic!("{origin}: not 3D")
+        };
+        p.model.name.clear();
+        p.model.description.clear();
+        format!("{:?} {:?}", p.model, p.settings)
+    };
+    let builtin = contrail::scene::builtin::find("slide-3d").unwrap().text;
+    assert!(
+        model("slide-3d", builtin) == model("coarse", &scene(&COARSE)),
+        "slide-3d is not the coarse case"
+    );
 }

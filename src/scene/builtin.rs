@@ -63,6 +63,10 @@ pub const BUILTINS: &[Builtin] = &[
         name: "hertz-3d",
         text: include_str!("../../scenes/hertz-3d.toml"),
     },
+    Builtin {
+        name: "slide-3d",
+        text: include_str!("../../scenes/slide-3d.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.
