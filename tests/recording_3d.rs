@@ -4,10 +4,11 @@
 //! `/model` describes the pairs and the rigid master, whose offset each message states;
 //! `inspect` summarises the 3D contact and a replay writes the 3D rerun view.
 
+mod common;
+
 use contrail::analysis::diff::{diff, Align, SURFACE_FIELDS};
 use contrail::analysis::inspect::{inspect, render};
 use contrail::analysis::recording::Recording;
-use contrail::problem::Problem;
 use contrail::record::mcap::sink::{McapOptions, McapSink};
 use contrail::record::rrd::sink::{self as rerun_sink, RerunTargets, RerunView};
 use contrail::record::surface_contact::{RigidShapeInfo, SurfacePointRecord};
@@ -59,22 +60,9 @@ end = 2.0
 increments = 8
 "#;
 
-fn problem(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, contrail::record::RunInfo) {
-    let src = contrail::scene::SceneSource {
-        origin: origin.into(),
-        text: text.into(),
-    };
-    let file = contrail::scene::parse(&src, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let contrail::scene::AnyProblem::Solid(p) = contrail::scene::build_any(&src, &file).unwrap() else {
-        panic!("{origin}: not a 3D scene")
-    };
-    let info = contrail::run_info(&src, &[], &p);
-    (p, info)
-}
-
 /// Run into an in-memory MCAP and a `Memory`.
 fn record(origin: &str, text: &str) -> (Recording, Memory) {
-    let (p, info) = problem(origin, text);
+    let (p, info) = common::solid_problem(origin, text);
     let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", McapOptions::default()).unwrap();
     let mut mem = Memory::default();
     let mut fan = Fanout::default();

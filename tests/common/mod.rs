@@ -86,6 +86,15 @@ pub fn assert_same_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, 
 /// Load a 3D scene from TOML text (`origin`: its name in errors) and run it to completion,
 /// keeping every record in memory.
 pub fn solve_solid_text(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, RunSummary, Memory) {
+    let (problem, info) = solid_problem(origin, text);
+    let mut mem = Memory::default();
+    let summary = run(&problem, &info, &mut mem, &AtomicBool::new(false))
+        .unwrap_or_else(|e| panic!("{}: {e}", problem.model.name));
+    (problem, summary, mem)
+}
+
+/// The 3D problem of a scene text (`origin` names it) and its run facts.
+pub fn solid_problem(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, contrail::record::RunInfo) {
     let src = contrail::scene::SceneSource {
         origin: origin.into(),
         text: text.into(),
@@ -96,8 +105,5 @@ pub fn solve_solid_text(origin: &str, text: &str) -> (Problem<contrail::model::S
         panic!("{origin}: not a 3D scene")
     };
     let info = contrail::run_info(&src, &[], &problem);
-    let mut mem = Memory::default();
-    let summary = run(&problem, &info, &mut mem, &AtomicBool::new(false))
-        .unwrap_or_else(|e| panic!("{}: {e}", problem.model.name));
-    (problem, summary, mem)
+    (problem, info)
 }

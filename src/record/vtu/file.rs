@@ -163,14 +163,10 @@ pub fn mesh_piece(
 
 /// The contact dataset: one vertex per slave point at its current position.
 pub fn contact_piece(points: &[ContactPointRecord]) -> Piece {
-    let n = points.len();
     let f = |name: &str, get: fn(&ContactPointRecord) -> f64| Array::f64(name, 1, points.iter().map(get).collect());
-    Piece {
-        points: points.iter().map(|p| [p.position[0], p.position[1], 0.0]).collect(),
-        connectivity: (0..n as i64).collect(),
-        offsets: (1..=n as i64).collect(),
-        types: vec![VTK_VERTEX; n],
-        point_data: vec![
+    vertices(
+        points.iter().map(|p| [p.position[0], p.position[1], 0.0]).collect(),
+        vec![
             f("gap", |p| p.gap),
             f("normal_traction", |p| p.normal_force),
             f("tangential_traction", |p| p.traction),
@@ -188,6 +184,18 @@ pub fn contact_piece(points: &[ContactPointRecord]) -> Piece {
                 points.iter().flat_map(|p| [p.normal[0], p.normal[1], 0.0]).collect(),
             ),
         ],
+    )
+}
+
+/// A dataset of one vertex per point, with its point data.
+fn vertices(points: Vec<[f64; 3]>, point_data: Vec<Array>) -> Piece {
+    let n = points.len();
+    Piece {
+        points,
+        connectivity: (0..n as i64).collect(),
+        offsets: (1..=n as i64).collect(),
+        types: vec![VTK_VERTEX; n],
+        point_data,
         cell_data: Vec::new(),
     }
 }
@@ -197,18 +205,14 @@ pub fn contact_piece(points: &[ContactPointRecord]) -> Piece {
 /// components), convective coordinates `(ξ¹, ξ²)`, state code (0 open, 1 stick, 2 slip),
 /// facet (−1 when none is within reach), crossing flag, pair and the master's normal.
 pub fn surface_contact_piece(points: &[SurfacePointRecord]) -> Piece {
-    let n = points.len();
     let f = |name: &str, get: fn(&SurfacePointRecord) -> f64| Array::f64(name, 1, points.iter().map(get).collect());
     let v3 = |name: &str, get: fn(&SurfacePointRecord) -> [f64; 3]| {
         Array::f64(name, 3, points.iter().flat_map(get).collect())
     };
     let i = |name: &str, get: fn(&SurfacePointRecord) -> i32| Array::i32(name, points.iter().map(get).collect());
-    Piece {
-        points: points.iter().map(|p| p.position).collect(),
-        connectivity: (0..n as i64).collect(),
-        offsets: (1..=n as i64).collect(),
-        types: vec![VTK_VERTEX; n],
-        point_data: vec![
+    vertices(
+        points.iter().map(|p| p.position).collect(),
+        vec![
             f("gap", |p| p.gap),
             f("normal_traction", |p| p.normal_force),
             v3("force", |p| p.force),
@@ -229,8 +233,7 @@ pub fn surface_contact_piece(points: &[SurfacePointRecord]) -> Piece {
             i("pair", |p| p.pair as i32),
             v3("normal", |p| p.normal),
         ],
-        cell_data: Vec::new(),
-    }
+    )
 }
 
 /// Base64 of an 8-byte byte count followed by the bytes (VTK's inline binary encoding).
