@@ -445,8 +445,7 @@ fn write_surface_contact<W: Write + Seek>(
 ) -> Result<(), OutError> {
     for (ip, pair) in model.surface_contacts.iter().enumerate() {
         let offset = master_offset(pair, rec.t);
-        let mut msg = SurfaceContactArrays::of(rec.increment, rec.t, ip, offset, points);
-        msg.pair_name.clone_from(&pair.name);
+        let msg = SurfaceContactArrays::of((rec.increment, rec.t), (ip, &pair.name), offset, points);
         out.put(schemas::SURFACE_CONTACT, &msg)?;
     }
     Ok(())

@@ -76,15 +76,21 @@ pub struct SurfaceContactArrays {
 }
 
 impl SurfaceContactArrays {
-    /// The points of pair `pair` among `points` (in their order) as one message.
-    pub fn of(increment: usize, t: f64, pair: usize, master_offset: [f64; 3], points: &[SurfacePointRecord]) -> Self {
+    /// The points of pair `pair` (named `pair_name`) among `points` (in their order) as one
+    /// message.
+    pub fn of(
+        (increment, t): (usize, f64),
+        (pair, pair_name): (usize, &str),
+        master_offset: [f64; 3],
+        points: &[SurfacePointRecord],
+    ) -> Self {
         let p: Vec<&SurfacePointRecord> = points.iter().filter(|p| p.pair == pair).collect();
         let col = |f: &dyn Fn(&SurfacePointRecord) -> [f64; 3]| p.iter().map(|q| f(q)).collect();
         SurfaceContactArrays {
             increment,
             t,
             pair,
-            pair_name: p.first().map_or_else(String::new, |q| q.pair_name.clone()),
+            pair_name: pair_name.to_string(),
             master_offset,
             slave: p.iter().map(|q| q.slave).collect(),
             node: p.iter().map(|q| q.node).collect(),
@@ -237,7 +243,7 @@ mod tests {
     #[test]
     fn arrays_read_back_as_the_records_bit_for_bit() {
         let points: Vec<_> = (0..3).map(point).collect();
-        let arrays = SurfaceContactArrays::of(4, 0.5, 0, [0.0, 0.0, -0.1], &points);
+        let arrays = SurfaceContactArrays::of((4, 0.5), (0, "base"), [0.0, 0.0, -0.1], &points);
         let text = serde_json::to_string(&arrays).unwrap();
         assert!(text.contains(r#""carried":[null,null,{"from_facet":2"#), "{text}");
         let back: SurfaceContactArrays = serde_json::from_str(&text).unwrap();
@@ -251,7 +257,7 @@ mod tests {
     #[test]
     fn ragged_arrays_and_unknown_pairs_or_slaves_are_refused() {
         let points: Vec<_> = (0..3).map(point).collect();
-        let arrays = SurfaceContactArrays::of(1, 0.0, 0, [0.0; 3], &points);
+        let arrays = SurfaceContactArrays::of((1, 0.0), (0, "base"), [0.0; 3], &points);
         let mut a = arrays.clone();
         a.carried.pop();
         assert!(a.records(&model()).unwrap_err().contains("different lengths"));
