@@ -12,6 +12,7 @@ pub mod assembly;
 pub mod chart;
 pub mod contact;
 pub mod contact3d;
+pub mod cpu;
 pub mod element;
 pub mod format;
 pub mod linalg;

@@ -74,6 +74,7 @@ impl LinearEas {
     }
 
     /// `α = Σ_q P_q E_c,q` from the compatible strains at the Gauss points.
+    #[inline(always)]
     pub fn alpha(&self, ec: [&[f64; 3]; 4]) -> [f64; 4] {
         let mut al = [0.0; 4];
         for (pq, e) in self.p.iter().zip(ec) {

@@ -95,6 +95,7 @@ struct GaussKin {
     det_f: f64,
 }
 
+#[inline(always)]
 fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
     let grad = &geo.grad;
     let mut f = [[1.0, 0.0], [0.0, 1.0]];
@@ -124,6 +125,7 @@ fn kinematics(geo: &GaussGeom, u: &[[f64; 2]; 4]) -> GaussKin {
 }
 
 /// `Ẽ = G α` at one Gauss point.
+#[inline(always)]
 fn enhanced(g: &[[f64; 4]; 3], al: &[f64; 4]) -> [f64; 3] {
     let row = |r: &[f64; 4]| r[0] * al[0] + r[1] * al[1] + r[2] * al[2] + r[3] * al[3];
     [row(&g[0]), row(&g[1]), row(&g[2])]
@@ -185,6 +187,7 @@ struct Wanted {
 /// (with `k`) `K_uu` (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
 // index loops: several arrays are walked by the same (triangular) index ranges
 #[allow(clippy::needless_range_loop)]
+#[inline(always)]
 fn gauss_pass(
     material: &Material,
     geo: &QuadGeometry,
@@ -247,7 +250,7 @@ fn gauss_pass(
 /// One Gauss point's share of the enhanced-strain blocks: `R_α += dv Gᵀ S`, with `kaa` the
 /// upper triangle of `K_αα += dv Gᵀ D G`, with `full` `K_uα += dv Bᵀ D G`.
 #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-#[inline]
+#[inline(always)]
 fn add_enhanced_terms(
     t: &mut Sums,
     g: &[[f64; 4]; 3],
@@ -285,7 +288,7 @@ fn add_enhanced_terms(
 /// One Gauss point's share of the upper triangle of `K_uu`: the material part `dv Bᵀ D B`
 /// and the geometric part `dv δ_ab ∇N_I · S ∇N_J` (`gr` = the shape gradients `∇N`).
 #[allow(clippy::needless_range_loop)]
-#[inline]
+#[inline(always)]
 fn add_displacement_stiffness(
     kuu: &mut [[f64; 8]; 8],
     b: &[[f64; 8]; 3],
@@ -319,6 +322,7 @@ fn add_displacement_stiffness(
 
 /// Largest change of an enhanced strain component, `max_q ‖G_q δα‖∞`, that the step `δα`
 /// makes at the Gauss points.
+#[inline(always)]
 fn enhanced_strain_change(geo: &QuadGeometry, da: &[f64; 4]) -> f64 {
     geo.gp
         .iter()
@@ -336,6 +340,7 @@ pub const EAS_STRAIN_TOLERANCE: f64 = 1e-14;
 const EAS_NEAR: f64 = 1e-6;
 
 /// `K_αα⁻¹` from its upper triangle.
+#[inline(always)]
 fn kaa_inverse(kaa: &[[f64; 4]; 4]) -> Option<Matrix4<f64>> {
     let mut m = Matrix4::zeros();
     for i in 0..4 {
@@ -379,6 +384,9 @@ fn kaa_inverse(kaa: &[[f64; 4]; 4]) -> Option<Matrix4<f64>> {
 ///
 /// Returns the stored strain energy of the element. Sign: `r` is the internal force, the
 /// global residual is `r − f_ext`.
+///
+/// Where the processor has AVX2 the kernel runs as compiled for it ([`crate::cpu`]; the same
+/// operations in the same order, so the same figures to the last bit).
 pub fn quad_residual_tangent_with(
     kind: ElementKind,
     material: &Material,
@@ -388,8 +396,44 @@ pub fn quad_residual_tangent_with(
     r: &mut [f64; 8],
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
+    #[cfg(target_arch = "x86_64")]
+    if crate::cpu::wide_vectors() {
+        // SAFETY: the processor has AVX2 (detected at run time).
+        return unsafe { residual_tangent_avx2(kind, material, geo, u, alpha, r, k) };
+    }
+    residual_tangent(kind, material, geo, u, alpha, r, k)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn residual_tangent_avx2(
+    kind: ElementKind,
+    material: &Material,
+    geo: &QuadGeometry,
+    u: &[[f64; 2]; 4],
+    alpha: &mut [f64; 4],
+    r: &mut [f64; 8],
+    k: Option<&mut [f64; 64]>,
+) -> Result<f64, ElementError> {
+    residual_tangent(kind, material, geo, u, alpha, r, k)
+}
+
+/// The body of [`quad_residual_tangent_with`], inlined into each of its compilations.
+#[inline(always)]
+fn residual_tangent(
+    kind: ElementKind,
+    material: &Material,
+    geo: &QuadGeometry,
+    u: &[[f64; 2]; 4],
+    alpha: &mut [f64; 4],
+    r: &mut [f64; 8],
+    k: Option<&mut [f64; 64]>,
+) -> Result<f64, ElementError> {
+    let plane_strain = matches!(geo.model, ModelGeometry::PlaneStrain);
+    // `Q4EasSafe` in plane strain evaluates `Q4Eas` first, which checks the same `det F`
+    let checked_inside = kind == ElementKind::Q4EasSafe && plane_strain;
     let split = matches!(kind, ElementKind::Q4EasStab | ElementKind::Q4EasSafe);
-    if split || !matches!(geo.model, ModelGeometry::PlaneStrain) {
+    if (split || !plane_strain) && !checked_inside {
         let det_f = min_det_f(geo, u);
         if det_f <= 0.0 || !det_f.is_finite() {
             return Err(ElementError::Inverted(det_f));
@@ -401,7 +445,7 @@ pub fn quad_residual_tangent_with(
     if kind == ElementKind::Q4EasSafe {
         return stab::compression_blend(material, geo, u, alpha, r, k);
     }
-    if !matches!(geo.model, ModelGeometry::PlaneStrain) {
+    if !plane_strain {
         return models::residual_tangent(kind == ElementKind::Q4Eas, material, geo, u, alpha, r, k);
     }
     let kin = [
@@ -447,6 +491,7 @@ pub fn quad_residual_tangent_with(
 /// strain by more than [`EAS_NEAR`], the displacement terms too, until a full pass finds
 /// `α` converged ([`EAS_STRAIN_TOLERANCE`]). Returns that pass's sums and `K_αα⁻¹`; `al` is
 /// the converged `α`.
+#[inline(always)]
 fn local_alpha_iteration(
     material: &Material,
     geo: &QuadGeometry,
@@ -509,19 +554,39 @@ fn local_alpha_iteration(
 /// form ([`LinearEas`]) `R_α` is round-off, and its correction compensates that round-off
 /// of `α`: left out, the residual's floor rose and the 120×4 strip took 1.9 % more Newton
 /// iterations (measured 2026-11-27), so it stays.
-#[inline]
+#[inline(always)]
 fn condense(t: &mut Sums, inv: &Matrix4<f64>, want_k: bool) {
     // plain arrays (row-major `inv[m][n]`): the sums below in the same order as before
-    let inv: [[f64; 4]; 4] = std::array::from_fn(|m| std::array::from_fn(|n| inv[(m, n)]));
+    let mut rows = [[0.0; 4]; 4];
+    for (m, row) in rows.iter_mut().enumerate() {
+        for (n, v) in row.iter_mut().enumerate() {
+            *v = inv[(m, n)];
+        }
+    }
+    let inv = rows;
     let dot = |a: &[f64; 4], b: &[f64; 4]| ((a[0] * b[0] + a[1] * b[1]) + a[2] * b[2]) + a[3] * b[3];
-    let y: [f64; 4] = std::array::from_fn(|m| dot(&inv[m], &t.ra));
+    let mut y = [0.0; 4];
+    for (v, row) in y.iter_mut().zip(&inv) {
+        *v = dot(row, &t.ra);
+    }
     for (ri, ki) in t.ru.iter_mut().zip(&t.kua) {
         *ri -= dot(ki, &y);
     }
     if want_k {
-        // K_αα⁻¹ is symmetric up to round-off; its columns are taken as stored
-        let col: [[f64; 4]; 4] = std::array::from_fn(|m| std::array::from_fn(|n| inv[n][m]));
-        let w: [[f64; 4]; 8] = std::array::from_fn(|i| std::array::from_fn(|m| dot(&t.kua[i], &col[m])));
+        // K_αα⁻¹ is symmetric up to round-off; its columns are taken as stored (plain loops:
+        // `array::from_fn` is not inlined into the kernel's AVX2 compilation)
+        let mut col = [[0.0; 4]; 4];
+        for m in 0..4 {
+            for n in 0..4 {
+                col[m][n] = inv[n][m];
+            }
+        }
+        let mut w = [[0.0; 4]; 8];
+        for (wi, ki) in w.iter_mut().zip(&t.kua) {
+            for (v, cm) in wi.iter_mut().zip(&col) {
+                *v = dot(ki, cm);
+            }
+        }
         for (i, wi) in w.iter().enumerate() {
             for j in i..8 {
                 t.kuu[i][j] -= dot(wi, &t.kua[j]);

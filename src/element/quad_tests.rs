@@ -290,3 +290,47 @@ fn the_safe_element_is_plain_eas_at_moderate_strain_and_bilinear_under_large_com
         resid(ElementKind::Q4EasSafe, &hard)
     ));
 }
+
+/// The AVX2 compilation of the kernel (`crate::cpu`) gives the baseline's residual, tangent,
+/// enhanced parameters and energy to the last bit, for every kind and material, at rest, in
+/// moderate strain and compressed past the safe element's blend.
+#[test]
+fn the_avx2_kernel_is_the_baselines_to_the_last_bit() {
+    if !crate::cpu::wide_vectors() {
+        return; // nothing to compare on this processor
+    }
+    let states: [[[f64; 2]; 4]; 3] = [
+        [[0.0; 2]; 4],
+        [[0.0, 0.0], [0.12, 0.05], [0.02, 0.21], [-0.08, 0.03]],
+        [[0.0, 0.0], [-0.35, 0.02], [-0.33, -0.2], [0.01, -0.22]],
+    ];
+    let kinds = [
+        ElementKind::Q4,
+        ElementKind::Q4Eas,
+        ElementKind::Q4EasStab,
+        ElementKind::Q4EasSafe,
+    ];
+    for m in &materials() {
+        for kind in kinds {
+            let geo = QuadGeometry::for_material(kind, m, &X).unwrap();
+            for u in &states {
+                let run = |wide: bool| {
+                    let (mut a, mut r, mut k) = ([0.01, -0.02, 0.0, 0.005], [0.0; 8], [0.0; 64]);
+                    let e = if wide {
+                        // SAFETY: the processor has AVX2 (checked above)
+                        unsafe { residual_tangent_avx2(kind, m, &geo, u, &mut a, &mut r, Some(&mut k)) }
+                    } else {
+                        residual_tangent(kind, m, &geo, u, &mut a, &mut r, Some(&mut k))
+                    };
+                    let e = e.unwrap();
+                    [vec![e], a.to_vec(), r.to_vec(), k.to_vec()].concat()
+                };
+                let (wide, base) = (run(true), run(false));
+                assert!(
+                    wide.iter().zip(&base).all(|(x, y)| x.to_bits() == y.to_bits()),
+                    "{kind:?} {m:?} at {u:?}"
+                );
+            }
+        }
+    }
+}
