@@ -63,56 +63,16 @@ pub fn body_resultants<S: Dim>(
     points: &[PointSnapshot],
     surface: &[SurfaceSnapshot],
 ) -> Vec<[f64; 3]> {
-    let mut body_of_node = vec![usize::MAX; model.nodes.len()];
-    for (b, body) in model.bodies.iter().enumerate() {
-        body_of_node[body.first_node..body.first_node + body.node_count].fill(b);
-    }
-    let mut total = vec![[0.0; 3]; model.bodies.len()];
-    let mut add = |node: usize, comp: usize, f: f64| {
-        if let Some(t) = body_of_node.get(node).and_then(|&b| total.get_mut(b)) {
-            t[comp] += f;
-        }
-    };
+    let mut totals = Totals::new(model);
     for l in &model.loads {
-        add(l.dof / S::D, l.dof % S::D, l.ramp.at(t));
+        totals.add(l.dof / S::D, l.dof % S::D, l.ramp.at(t));
     }
     for &d in &asm.dofs.prescribed {
-        add(d / S::D, d % S::D, asm.r_full[d]);
+        totals.add(d / S::D, d % S::D, asm.r_full[d]);
     }
-    for p in points.iter().filter(|p| p.state != ContactState::Open) {
-        let Some(pair) = model.contacts.get(p.pair) else {
-            continue;
-        };
-        let f = super::monitor::slave_force(p);
-        if let Slave::Node(n) = p.slave_id {
-            add(n, 0, f[0]);
-            add(n, 1, f[1]);
-        }
-        if let (Master::Face { segments, .. }, Some(s)) = (&pair.master, p.segment) {
-            if let Some(&[a, _]) = segments.get(s) {
-                add(a, 0, -f[0]);
-                add(a, 1, -f[1]);
-            }
-        }
-    }
-    for p in surface
-        .iter()
-        .filter(|p| p.eval.is_some_and(|e| e.state != ContactState::Open))
-    {
-        for c in 0..3 {
-            add(p.node, c, p.force[c]);
-        }
-        let master = S::solid(model)
-            .and_then(|m| m.surface_contacts.get(p.pair))
-            .map(|pair| &pair.master);
-        if let (Some(SurfaceMaster::Facets { facets, .. }), Some(f)) = (master, p.facet) {
-            if let Some(&[a, ..]) = facets.get(f) {
-                for c in 0..3 {
-                    add(a, c, -p.force[c]);
-                }
-            }
-        }
-    }
+    add_segment_contacts(&mut totals, model, points);
+    add_surface_contacts(&mut totals, model, surface);
+    let mut total = totals.total;
     if let Some(plane) = (S::D == 2).then(|| model.plane()) {
         for (b, body) in plane.bodies.iter().enumerate() {
             if body.kinematics == crate::element::quad::Kinematics::Axisymmetric {
@@ -121,6 +81,74 @@ pub fn body_resultants<S: Dim>(
         }
     }
     total
+}
+
+/// Forces summed per body, by the body that owns each node.
+struct Totals {
+    body_of_node: Vec<usize>,
+    total: Vec<[f64; 3]>,
+}
+
+impl Totals {
+    fn new<S: Dim>(model: &Model<S>) -> Self {
+        let mut body_of_node = vec![usize::MAX; model.nodes.len()];
+        for (b, body) in model.bodies.iter().enumerate() {
+            body_of_node[body.first_node..body.first_node + body.node_count].fill(b);
+        }
+        Totals {
+            body_of_node,
+            total: vec![[0.0; 3]; model.bodies.len()],
+        }
+    }
+
+    /// Component `comp` of a force `f` on `node` (nodes of no body are left out).
+    fn add(&mut self, node: usize, comp: usize, f: f64) {
+        if let Some(t) = self.body_of_node.get(node).and_then(|&b| self.total.get_mut(b)) {
+            t[comp] += f;
+        }
+    }
+}
+
+/// The forces of the closed 2D points: on the slave node, and its reaction on the first
+/// node of a deformable master segment.
+fn add_segment_contacts<S: Dim>(totals: &mut Totals, model: &Model<S>, points: &[PointSnapshot]) {
+    for p in points.iter().filter(|p| p.state != ContactState::Open) {
+        let Some(pair) = model.contacts.get(p.pair) else {
+            continue;
+        };
+        let f = super::monitor::slave_force(p);
+        if let Slave::Node(n) = p.slave_id {
+            totals.add(n, 0, f[0]);
+            totals.add(n, 1, f[1]);
+        }
+        if let (Master::Face { segments, .. }, Some(s)) = (&pair.master, p.segment) {
+            if let Some(&[a, _]) = segments.get(s) {
+                totals.add(a, 0, -f[0]);
+                totals.add(a, 1, -f[1]);
+            }
+        }
+    }
+}
+
+/// The forces of the closed 3D points: on the slave node, and its reaction on the first
+/// node of a deformable master facet.
+fn add_surface_contacts<S: Dim>(totals: &mut Totals, model: &Model<S>, surface: &[SurfaceSnapshot]) {
+    let closed = |p: &&SurfaceSnapshot| p.eval.is_some_and(|e| e.state != ContactState::Open);
+    for p in surface.iter().filter(closed) {
+        for c in 0..3 {
+            totals.add(p.node, c, p.force[c]);
+        }
+        let master = S::solid(model)
+            .and_then(|m| m.surface_contacts.get(p.pair))
+            .map(|pair| &pair.master);
+        if let (Some(SurfaceMaster::Facets { facets, .. }), Some(f)) = (master, p.facet) {
+            if let Some(&[a, ..]) = facets.get(f) {
+                for c in 0..3 {
+                    totals.add(a, c, -p.force[c]);
+                }
+            }
+        }
+    }
 }
 
 /// The body with the largest resultant relative to `fref` or, where larger, the noise
