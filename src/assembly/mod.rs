@@ -9,6 +9,7 @@ use crate::contact::system::{Config, ContactSystem};
 use crate::contact3d::system::SurfaceConfig;
 use crate::element::material::Material;
 use crate::element::quad::ElementError;
+use crate::linalg::aggregation::MeshNodes;
 use crate::linalg::chooser::LinearSolve;
 use crate::linalg::factorization::LinearError;
 use crate::linalg::sparse::SparseMatrix;
@@ -249,14 +250,20 @@ impl<S: Dim> Assembler<S> {
             let plane = model.plane();
             // a skew node's equations are in its local frame: not in the near-null space
             let turned: std::collections::HashSet<usize> = skew.dofs.iter().map(|s| s.node).collect();
-            linear.set_nodes(
+            linear.set_nodes(MeshNodes::Plane(
                 (plane.nodes.iter().enumerate())
                     .map(|(i, x)| match turned.contains(&i) {
                         true => ([None, None], *x),
                         false => ([dofs.eq[2 * i], dofs.eq[2 * i + 1]], *x),
                     })
                     .collect(),
-            );
+            ));
+        } else if let Some(solid) = S::solid(model) {
+            linear.set_nodes(MeshNodes::Solid(
+                (solid.nodes.iter().enumerate())
+                    .map(|(i, x)| ([dofs.eq[3 * i], dofs.eq[3 * i + 1], dofs.eq[3 * i + 2]], *x))
+                    .collect(),
+            ));
         }
         let mut a = Assembler {
             dofs,

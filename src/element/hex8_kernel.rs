@@ -19,7 +19,13 @@ const EAS_ROUNDOFF_FLOOR: f64 = 1e-11;
 /// Local Newton steps on `α` before [`Hex8Error::EasNotConverged`].
 const EAS_MAX_ITERATIONS: usize = 25;
 
-/// Sums of one pass over the Gauss points.
+/// A step of the local iteration that changes no enhanced strain by more than this is close
+/// enough for the next pass to converge (Newton's quadratic rate): that pass evaluates the
+/// displacement terms too (the 2D element's rule).
+const EAS_NEAR: f64 = 1e-6;
+
+/// Sums of one pass over the Gauss points (`kuu` and `kaa` in full: each summed on its upper
+/// triangle and mirrored at the end of the pass).
 struct Sums {
     ru: Vec24,
     kuu: SMatrix<f64, 24, 24>,
@@ -29,18 +35,54 @@ struct Sums {
     energy: f64,
 }
 
-/// One pass over the Gauss points at the enhanced parameters `al`: `R_u`, the energy, with
-/// `want_k` `K_uu` (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`), and with
-/// `eas` `R_α = Σ Gᵀ S dv`, `K_αα = Σ Gᵀ D G dv`, `K_uα = Σ Bᵀ D G dv` (plus the penalties of
-/// held modes, `½ Σ p_m α_m²`).
+/// What one Gauss pass evaluates.
+#[derive(Clone, Copy)]
+struct Wanted {
+    /// `R_α`, `K_αα` (and with `full` `K_uα`): an EAS element.
+    eas: bool,
+    /// `R_u`, `K_uα` and the energy (passes of the local iteration far from its solution
+    /// need `R_α` and `K_αα` only).
+    full: bool,
+    /// `K_uu` (with `full`).
+    k: bool,
+}
+
+/// `out += aᵀ b` on the upper triangle of the square `out` (`a`, `b`: `R × C`).
+#[inline]
+fn add_upper_tr_mul<const R: usize, const C: usize>(
+    out: &mut SMatrix<f64, C, C>,
+    a: &SMatrix<f64, R, C>,
+    b: &SMatrix<f64, R, C>,
+) {
+    for j in 0..C {
+        let bj = b.column(j);
+        for i in 0..=j {
+            out[(i, j)] += a.column(i).dot(&bj);
+        }
+    }
+}
+
+/// Copy the upper triangle of a square matrix onto its lower one.
+fn mirror_upper<const N: usize>(m: &mut SMatrix<f64, N, N>) {
+    for j in 0..N {
+        for i in 0..j {
+            m[(j, i)] = m[(i, j)];
+        }
+    }
+}
+
+/// One pass over the Gauss points at the enhanced parameters `al`: with `eas`
+/// `R_α = Σ Gᵀ S dv`, `K_αα = Σ Gᵀ D G dv` (plus the penalties of held modes,
+/// `½ Σ p_m α_m²`); with `full` also `R_u`, the energy and `K_uα = Σ Bᵀ D G dv`, and with `k`
+/// `K_uu` (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
 fn gauss_pass(
     material: &Material,
     geo: &Hex8Geometry,
     kin: &[GaussKin; 8],
     al: &VecA,
-    eas: bool,
-    want_k: bool,
+    wanted: Wanted,
 ) -> Result<Sums, Hex8Error> {
+    let Wanted { eas, full, k: want_k } = wanted;
     let mut t = Sums {
         ru: Vec24::zeros(),
         kuu: SMatrix::zeros(),
@@ -53,20 +95,25 @@ fn gauss_pass(
         let dv = gq.dv;
         let e = if eas { kq.ec + gq.g * al } else { kq.ec };
         let (s, d) = material.stress_tangent_3d(&e)?;
+        if eas {
+            let dg = (d * gq.g) * dv;
+            t.ra += gq.g.tr_mul(&s) * dv;
+            add_upper_tr_mul(&mut t.kaa, &gq.g, &dg);
+            if full {
+                t.kua += kq.b.tr_mul(&dg);
+            }
+        }
+        if !full {
+            continue;
+        }
         t.energy += material.energy_3d(&e)? * dv;
         t.ru += kq.b.tr_mul(&s) * dv;
-        if eas {
-            let dg = d * gq.g;
-            t.ra += gq.g.tr_mul(&s) * dv;
-            t.kaa += gq.g.tr_mul(&dg) * dv;
-            t.kua += kq.b.tr_mul(&dg) * dv;
-        }
         if want_k {
-            t.kuu += kq.b.tr_mul(&(d * kq.b)) * dv;
+            add_upper_tr_mul(&mut t.kuu, &kq.b, &((d * kq.b) * dv));
             let st = Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]);
             let gsg = gq.grad.tr_mul(&(st * gq.grad)) * dv;
-            for i in 0..8 {
-                for j in 0..8 {
+            for j in 0..8 {
+                for i in 0..=j {
                     for a in 0..3 {
                         t.kuu[(3 * i + a, 3 * j + a)] += gsg[(i, j)];
                     }
@@ -80,6 +127,10 @@ fn gauss_pass(
             t.kaa[(m, m)] += pm;
             t.energy += 0.5 * pm * al[m] * al[m];
         }
+        mirror_upper(&mut t.kaa);
+    }
+    if full && want_k {
+        mirror_upper(&mut t.kuu);
     }
     Ok(t)
 }
@@ -145,12 +196,17 @@ pub fn hex8_residual_tangent_with(
     let want_k = k.is_some();
     let t = if eas {
         let mut al = VecA::from(*alpha);
-        let (mut t, inv) = solve_enhanced(material, geo, &kin, &mut al, want_k)?;
-        condense(&mut t, &inv, want_k);
+        let (mut t, factor) = solve_enhanced(material, geo, &kin, &mut al, want_k)?;
+        condense(&mut t, &factor, want_k);
         alpha.copy_from_slice(al.as_slice());
         t
     } else {
-        gauss_pass(material, geo, &kin, &VecA::zeros(), false, want_k)?
+        let wanted = Wanted {
+            eas: false,
+            full: true,
+            k: want_k,
+        };
+        gauss_pass(material, geo, &kin, &VecA::zeros(), wanted)?
     };
     if let Some(kout) = k {
         for (i, row) in kout.chunks_exact_mut(24).enumerate() {
@@ -163,45 +219,108 @@ pub fn hex8_residual_tangent_with(
     Ok(t.energy)
 }
 
+/// `K_αα` factorised: by Cholesky (symmetric positive definite, as for a stable material
+/// state), else inverted by LU.
+enum KaaFactor {
+    Cholesky(nalgebra::Cholesky<f64, nalgebra::Const<EAS_COUNT>>),
+    Inverse(MatAA),
+}
+
+impl KaaFactor {
+    fn new(kaa: &MatAA) -> Result<Self, Hex8Error> {
+        if let Some(c) = kaa.cholesky().filter(|c| c.l_dirty().iter().all(|v| v.is_finite())) {
+            return Ok(KaaFactor::Cholesky(c));
+        }
+        kaa.try_inverse()
+            .filter(|m| m.iter().all(|v| v.is_finite()))
+            .map(KaaFactor::Inverse)
+            .ok_or(Hex8Error::EasSingular)
+    }
+
+    /// `K_αα⁻¹ b`.
+    fn solve(&self, b: &VecA) -> VecA {
+        match self {
+            KaaFactor::Cholesky(c) => c.solve(b),
+            KaaFactor::Inverse(inv) => inv * b,
+        }
+    }
+}
+
 /// The local Newton iteration on `α` from `al` (module documentation of
-/// [`hex8_residual_tangent_with`]): the converged pass and `K_αα⁻¹`; `al` is left at the
-/// converged `α`.
+/// [`hex8_residual_tangent_with`]): the converged pass and `K_αα` factorised; `al` is left at
+/// the converged `α`. Passes evaluate `R_α` and `K_αα` only until a step is below
+/// [`EAS_NEAR`]; from then on they are full, and a pass that finds `α` converged without
+/// being full is repeated fully at the same `α` (the same `α` and the same figures as full
+/// passes throughout).
 fn solve_enhanced(
     material: &Material,
     geo: &Hex8Geometry,
     kin: &[GaussKin; 8],
     al: &mut VecA,
     want_k: bool,
-) -> Result<(Sums, MatAA), Hex8Error> {
+) -> Result<(Sums, KaaFactor), Hex8Error> {
     let mut last = f64::INFINITY;
-    for _ in 0..EAS_MAX_ITERATIONS {
-        let t = gauss_pass(material, geo, kin, al, true, want_k)?;
-        let inv = t
-            .kaa
-            .try_inverse()
-            .filter(|m| m.iter().all(|v| v.is_finite()))
-            .ok_or(Hex8Error::EasSingular)?;
-        let da = inv * t.ra;
+    let mut near = false;
+    for it in 0..EAS_MAX_ITERATIONS {
+        let wanted = Wanted {
+            eas: true,
+            full: near,
+            k: want_k && near,
+        };
+        let t = gauss_pass(material, geo, kin, al, wanted)?;
+        let factor = KaaFactor::new(&t.kaa)?;
+        let da = factor.solve(&t.ra);
         let step = enhanced_strain_change(geo, &da);
         if !step.is_finite() {
             return Err(Hex8Error::EasSingular);
         }
         if step <= EAS_STRAIN_TOLERANCE || (step <= EAS_ROUNDOFF_FLOOR && step > 0.5 * last) {
-            return Ok((t, inv));
+            if near {
+                return Ok((t, factor));
+            }
+            near = true;
+            continue;
         }
         *al -= da;
         last = step;
+        near = step <= EAS_NEAR || it >= 12;
     }
-    let t = gauss_pass(material, geo, kin, al, true, false)?;
+    let wanted = Wanted {
+        eas: true,
+        full: false,
+        k: false,
+    };
+    let t = gauss_pass(material, geo, kin, al, wanted)?;
     Err(Hex8Error::EasNotConverged(t.ra.norm()))
 }
 
-/// Static condensation at a converged `α` (`inv = K_αα⁻¹`): `R* = R_u − W R_α` and, with
-/// `want_k`, `K* = K_uu − W K_αu`, `W = K_uα K_αα⁻¹`.
-fn condense(t: &mut Sums, inv: &MatAA, want_k: bool) {
-    let w = t.kua * inv;
-    t.ru -= w * t.ra;
-    if want_k {
-        t.kuu -= w * t.kua.transpose();
+/// Static condensation at a converged `α`: `R* = R_u − K_uα K_αα⁻¹ R_α` and, with `want_k`,
+/// `K* = K_uu − K_uα K_αα⁻¹ K_αu`. With a Cholesky factor `K_αα = L Lᵀ`: `Y = L⁻¹ K_αu`,
+/// `R* = R_u − Yᵀ L⁻¹ R_α`, `K* = K_uu − Yᵀ Y` (symmetric by construction).
+fn condense(t: &mut Sums, factor: &KaaFactor, want_k: bool) {
+    match factor {
+        KaaFactor::Cholesky(c) => {
+            let l = c.l_dirty();
+            let y = l
+                .solve_lower_triangular(&t.kua.transpose())
+                .expect("a Cholesky factor has a nonzero diagonal");
+            let z = l
+                .solve_lower_triangular(&t.ra)
+                .expect("a Cholesky factor has a nonzero diagonal");
+            t.ru -= y.tr_mul(&z);
+            if want_k {
+                let mut yty = SMatrix::<f64, 24, 24>::zeros();
+                add_upper_tr_mul(&mut yty, &y, &y);
+                mirror_upper(&mut yty);
+                t.kuu -= yty;
+            }
+        }
+        KaaFactor::Inverse(inv) => {
+            let w = t.kua * inv;
+            t.ru -= w * t.ra;
+            if want_k {
+                t.kuu -= w * t.kua.transpose();
+            }
+        }
     }
 }

@@ -9,27 +9,69 @@ use super::csr::Csr;
 /// prescribed) and its reference position.
 pub type MeshNode = ([Option<usize>; 2], [f64; 2]);
 
+/// A 3D mesh node as the linear solver sees it: its free equations `(x, y, z)` and its
+/// reference position.
+pub type SolidNode = ([Option<usize>; 3], [f64; 3]);
+
+/// The mesh nodes of a model, in its dimension.
+#[derive(Debug, Clone)]
+pub enum MeshNodes {
+    Plane(Vec<MeshNode>),
+    Solid(Vec<SolidNode>),
+}
+
+/// Most modes of a near-null space: the six rigid-body modes of a 3D solid.
+pub const MAX_MODES: usize = 6;
+
 /// The near-null space of one level: its node groups and, per unknown, the values of the
 /// modes.
 pub struct NearNullSpace {
     /// Unknowns of each node (every unknown in exactly one node).
     pub nodes: Vec<Vec<usize>>,
-    /// Per unknown, the value of each of the (up to 3) modes.
-    pub modes: Vec<[f64; 3]>,
+    /// Per unknown, the value of each mode (the first [`Self::count`] are used).
+    pub modes: Vec<[f64; MAX_MODES]>,
+    /// The modes per node: 3 for a 2D solid, 6 for a 3D one.
+    pub count: usize,
 }
 
 impl NearNullSpace {
+    /// The rigid-body modes of the nodes of a model: in 2D the translations `(1, 0)`,
+    /// `(0, 1)` and the rotation `(−y, x)`; in 3D the translations along x, y, z and the
+    /// rotations `e_k × X` about the three axes, at each node's reference position `X`.
+    pub fn rigid_body(n: usize, nodes: &MeshNodes) -> Self {
+        match nodes {
+            MeshNodes::Plane(nodes) => Self::rigid_body_2d(n, nodes),
+            MeshNodes::Solid(nodes) => Self::from_nodes(n, 6, nodes.iter().map(|(eqs, x)| (&eqs[..], rigid_3d(*x)))),
+        }
+    }
+
     /// The rigid-body modes of 2D nodes: for each node its free unknowns
     /// `(x-equation, y-equation)` and reference position.
     pub fn rigid_body_2d(n: usize, nodes: &[MeshNode]) -> Self {
-        let mut modes = vec![[0.0; 3]; n];
-        let mut groups = Vec::with_capacity(nodes.len());
+        let rows = |x: [f64; 2]| {
+            let mut r = [[0.0; MAX_MODES]; 3];
+            r[0][..3].copy_from_slice(&[1.0, 0.0, -x[1]]);
+            r[1][..3].copy_from_slice(&[0.0, 1.0, x[0]]);
+            r
+        };
+        Self::from_nodes(n, 3, nodes.iter().map(|(eqs, x)| (&eqs[..], rows(*x))))
+    }
+
+    /// The near-null space of nodes given as (free equations per component, the modes' values
+    /// per component), `count` modes each.
+    fn from_nodes<'a>(
+        n: usize,
+        count: usize,
+        nodes: impl Iterator<Item = (&'a [Option<usize>], [[f64; MAX_MODES]; 3])>,
+    ) -> Self {
+        let mut modes = vec![[0.0; MAX_MODES]; n];
+        let mut groups = Vec::new();
         let mut covered = vec![false; n];
-        for (eqs, x) in nodes {
+        for (eqs, rows) in nodes {
             let mut g = Vec::new();
             for (c, eq) in eqs.iter().enumerate() {
                 if let Some(e) = *eq {
-                    modes[e] = if c == 0 { [1.0, 0.0, -x[1]] } else { [0.0, 1.0, x[0]] };
+                    modes[e] = rows[c];
                     covered[e] = true;
                     g.push(e);
                 }
@@ -41,12 +83,27 @@ impl NearNullSpace {
         // an unknown of no node (none in this code, but keep the partition complete)
         for (e, c) in covered.iter().enumerate() {
             if !c {
-                modes[e] = [1.0, 0.0, 0.0];
+                modes[e] = [0.0; MAX_MODES];
+                modes[e][0] = 1.0;
                 groups.push(vec![e]);
             }
         }
-        NearNullSpace { nodes: groups, modes }
+        NearNullSpace {
+            nodes: groups,
+            modes,
+            count,
+        }
     }
+}
+
+/// The six rigid-body modes of a 3D node at `x`, per component: translations, then the
+/// rotations `e_x × X = (0, −z, y)`, `e_y × X = (z, 0, −x)`, `e_z × X = (−y, x, 0)`.
+fn rigid_3d(x: [f64; 3]) -> [[f64; MAX_MODES]; 3] {
+    [
+        [1.0, 0.0, 0.0, 0.0, x[2], -x[1]],
+        [0.0, 1.0, 0.0, -x[2], 0.0, x[0]],
+        [0.0, 0.0, 1.0, x[1], -x[0], 0.0],
+    ]
 }
 
 impl NearNullSpace {
@@ -67,47 +124,74 @@ impl NearNullSpace {
         }
         let mut count = 0;
         for g in &self.nodes {
-            let &[e0, e1] = g.as_slice() else { continue };
-            let mut blk = [[0.0; 2]; 2];
-            let mut off: Vec<(usize, f64)> = Vec::new();
-            for (r, &d) in [e0, e1].iter().enumerate() {
-                for k in a.ptr[d]..a.ptr[d + 1] {
-                    let c = a.idx[k];
-                    if c == e0 || c == e1 {
-                        blk[r][usize::from(c == e1)] += a.val[k];
-                    } else {
-                        match off.iter_mut().find(|(j, _)| *j == node_of[c]) {
-                            Some(e) => e.1 += a.val[k] * a.val[k],
-                            None => off.push((node_of[c], a.val[k] * a.val[k])),
-                        }
-                    }
-                }
+            if !(2..=3).contains(&g.len()) {
+                continue;
             }
-            let coupling: f64 = off.iter().map(|(_, s)| s.sqrt()).sum();
-            // eigen-pair of the symmetric part of the 2×2 block
-            let (p, q, r) = (blk[0][0], 0.5 * (blk[0][1] + blk[1][0]), blk[1][1]);
-            let mean = 0.5 * (p + r);
-            let rad = (0.25 * (p - r) * (p - r) + q * q).sqrt();
-            let lambda = mean + rad;
+            let (blk, coupling) = node_block(a, g, &node_of);
+            let (lambda, v) = match g.len() {
+                2 => largest_eigenpair_2(&blk),
+                _ => largest_eigenpair_3(&blk),
+            };
             if lambda <= factor * coupling {
                 continue;
             }
-            let v = if q.abs() > 1e-300 || (p - r).abs() > 0.0 {
-                let (x, y) = if p >= r { (lambda - r, q) } else { (q, lambda - p) };
-                let l = x.hypot(y);
-                [x / l, y / l]
-            } else {
-                [1.0, 0.0]
-            };
-            for k in 0..3 {
-                let along = v[0] * self.modes[e0][k] + v[1] * self.modes[e1][k];
-                self.modes[e0][k] -= along * v[0];
-                self.modes[e1][k] -= along * v[1];
+            for k in 0..self.count {
+                let along: f64 = g.iter().zip(&v).map(|(&e, vc)| vc * self.modes[e][k]).sum();
+                for (&e, vc) in g.iter().zip(&v) {
+                    self.modes[e][k] -= along * vc;
+                }
             }
             count += 1;
         }
         count
     }
+}
+
+/// A node's diagonal block `A_II` (its unknowns `g`, up to 3) and its coupling to the other
+/// nodes, `Σ_J ‖A_IJ‖` (Frobenius norms).
+fn node_block(a: &Csr, g: &[usize], node_of: &[usize]) -> ([[f64; 3]; 3], f64) {
+    let mut blk = [[0.0; 3]; 3];
+    let mut off: Vec<(usize, f64)> = Vec::new();
+    for (r, &d) in g.iter().enumerate() {
+        for k in a.ptr[d]..a.ptr[d + 1] {
+            let c = a.idx[k];
+            if let Some(col) = g.iter().position(|&e| e == c) {
+                blk[r][col] += a.val[k];
+            } else {
+                match off.iter_mut().find(|(j, _)| *j == node_of[c]) {
+                    Some(e) => e.1 += a.val[k] * a.val[k],
+                    None => off.push((node_of[c], a.val[k] * a.val[k])),
+                }
+            }
+        }
+    }
+    (blk, off.iter().map(|(_, s)| s.sqrt()).sum())
+}
+
+/// The largest eigenvalue of the symmetric part of a 2×2 block and its unit eigenvector (in
+/// closed form).
+fn largest_eigenpair_2(blk: &[[f64; 3]; 3]) -> (f64, [f64; 3]) {
+    let (p, q, r) = (blk[0][0], 0.5 * (blk[0][1] + blk[1][0]), blk[1][1]);
+    let mean = 0.5 * (p + r);
+    let rad = (0.25 * (p - r) * (p - r) + q * q).sqrt();
+    let lambda = mean + rad;
+    let v = if q.abs() > 1e-300 || (p - r).abs() > 0.0 {
+        let (x, y) = if p >= r { (lambda - r, q) } else { (q, lambda - p) };
+        let l = x.hypot(y);
+        [x / l, y / l, 0.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    (lambda, v)
+}
+
+/// The largest eigenvalue of the symmetric part of a 3×3 block and its unit eigenvector.
+fn largest_eigenpair_3(blk: &[[f64; 3]; 3]) -> (f64, [f64; 3]) {
+    let m = nalgebra::Matrix3::from_fn(|r, c| 0.5 * (blk[r][c] + blk[c][r]));
+    let eig = m.symmetric_eigen();
+    let k = eig.eigenvalues.imax();
+    let v = eig.eigenvectors.column(k);
+    (eig.eigenvalues[k], [v[0], v[1], v[2]])
 }
 
 const FREE: usize = usize::MAX;
@@ -259,18 +343,19 @@ pub(super) fn tentative(n: usize, nns: &NearNullSpace, agg_of_node: &[usize]) ->
         dofs_of[g].extend_from_slice(&nns.nodes[node]);
     }
     // per fine unknown: its (coarse column, value) entries
-    let mut rows: Vec<[(usize, f64); 3]> = vec![[(0, 0.0); 3]; n];
+    let mut rows: Vec<[(usize, f64); MAX_MODES]> = vec![[(0, 0.0); MAX_MODES]; n];
     let mut row_len = vec![0usize; n];
     let mut coarse_nodes = Vec::with_capacity(n_agg);
-    let mut coarse_modes = Vec::with_capacity(3 * n_agg);
-    let mut q: Vec<[f64; 3]> = Vec::new();
+    let count = nns.count;
+    let mut coarse_modes = Vec::with_capacity(count * n_agg);
+    let mut q: Vec<[f64; MAX_MODES]> = Vec::new();
     for dofs in &dofs_of {
         q.clear();
         q.extend(dofs.iter().map(|&d| nns.modes[d]));
-        // modified Gram–Schmidt on the three columns; a column that is (numerically) in the
-        // span of the previous ones is dropped
-        let mut kept: Vec<usize> = Vec::with_capacity(3);
-        for k in 0..3 {
+        // modified Gram–Schmidt on the columns; a column that is (numerically) in the span of
+        // the previous ones is dropped
+        let mut kept: Vec<usize> = Vec::with_capacity(count);
+        for k in 0..count {
             let norm0 = q.iter().map(|r| r[k] * r[k]).sum::<f64>().sqrt();
             for &j in &kept {
                 let d: f64 = q.iter().map(|r| r[j] * r[k]).sum();
@@ -285,8 +370,8 @@ pub(super) fn tentative(n: usize, nns: &NearNullSpace, agg_of_node: &[usize]) ->
         let first = coarse_modes.len();
         for &j in &kept {
             // coarse mode values: R_jk = q_j · B_k
-            let mut rj = [0.0; 3];
-            for (k, v) in rj.iter_mut().enumerate() {
+            let mut rj = [0.0; MAX_MODES];
+            for (k, v) in rj.iter_mut().enumerate().take(count) {
                 *v = dofs.iter().zip(&q).map(|(&d, qr)| qr[j] * nns.modes[d][k]).sum();
             }
             coarse_modes.push(rj);
@@ -318,6 +403,7 @@ pub(super) fn tentative(n: usize, nns: &NearNullSpace, agg_of_node: &[usize]) ->
         NearNullSpace {
             nodes: coarse_nodes,
             modes: coarse_modes,
+            count,
         },
     )
 }
@@ -380,6 +466,65 @@ mod tests {
             assert!((across - across_before).abs() < 1e-12, "mode {m} across n changed");
         }
         for d in [0, 1, 4, 5] {
+            assert_eq!(nns.modes[d], before[d], "unknown {d} of a free node changed");
+        }
+    }
+
+    /// The same in 3D: three nodes in a row, coupled per component, a stiff spring on the
+    /// middle node along `n = (0.48, 0.6, 0.64)`: that node's six modes lose their component
+    /// along `n`, the other nodes' are unchanged.
+    #[test]
+    fn a_penalty_direction_is_taken_out_of_the_six_modes_of_a_3d_node() {
+        let (k, n) = (1e6, [0.48, 0.6, 0.64]);
+        let mut dense = [[0.0; 9]; 9];
+        for (i, j) in [(0, 1), (1, 2)] {
+            for c in 0..3 {
+                let (p, q) = (3 * i + c, 3 * j + c);
+                dense[p][p] += 1.0;
+                dense[q][q] += 1.0;
+                dense[p][q] -= 1.0;
+                dense[q][p] -= 1.0;
+            }
+        }
+        for r in 0..3 {
+            for c in 0..3 {
+                dense[3 + r][3 + c] += k * n[r] * n[c];
+            }
+        }
+        let mut a = Csr {
+            nrows: 9,
+            ncols: 9,
+            ptr: vec![0],
+            ..Default::default()
+        };
+        for row in &dense {
+            for (c, &v) in row.iter().enumerate() {
+                if v != 0.0 {
+                    a.idx.push(c);
+                    a.val.push(v);
+                }
+            }
+            a.ptr.push(a.idx.len());
+        }
+        let nodes: Vec<SolidNode> = (0..3)
+            .map(|i| ([Some(3 * i), Some(3 * i + 1), Some(3 * i + 2)], [i as f64, 0.5, -0.25]))
+            .collect();
+        let mut nns = NearNullSpace::rigid_body(9, &MeshNodes::Solid(nodes));
+        let before = nns.modes.clone();
+        assert_eq!(nns.constrain_stiff_directions(&a, 2.0), 1);
+        for m in 0..6 {
+            let along: f64 = (0..3).map(|c| n[c] * nns.modes[3 + c][m]).sum();
+            assert!(
+                along.abs() < 1e-12,
+                "mode {m} still moves the held node along n: {along}"
+            );
+            let along_before: f64 = (0..3).map(|c| n[c] * before[3 + c][m]).sum();
+            for c in 0..3 {
+                let kept = before[3 + c][m] - along_before * n[c];
+                assert!((nns.modes[3 + c][m] - kept).abs() < 1e-12, "mode {m}, component {c}");
+            }
+        }
+        for d in [0, 1, 2, 6, 7, 8] {
             assert_eq!(nns.modes[d], before[d], "unknown {d} of a free node changed");
         }
     }

@@ -377,4 +377,85 @@ mod tests {
         }
         assert!(p0.ncols < a.nrows / 3, "{} of {}", p0.ncols, a.nrows);
     }
+
+    /// A 3D grid of `n³` nodes at integer positions, each component coupled to the same
+    /// component of its six neighbours (a Laplacian per component; the pattern is what the
+    /// aggregation sees).
+    fn grid_3d(n: usize) -> (Csr, Vec<super::super::aggregation::SolidNode>) {
+        let id = |i: usize, j: usize, k: usize| (k * n + j) * n + i;
+        let mut a = Csr {
+            nrows: 3 * n * n * n,
+            ncols: 3 * n * n * n,
+            ptr: vec![0],
+            ..Default::default()
+        };
+        let mut nodes = Vec::new();
+        for k in 0..n {
+            for j in 0..n {
+                for i in 0..n {
+                    let me = id(i, j, k);
+                    nodes.push((
+                        [Some(3 * me), Some(3 * me + 1), Some(3 * me + 2)],
+                        [i as f64, j as f64, k as f64],
+                    ));
+                    for c in 0..3 {
+                        let mut row: Vec<(usize, f64)> = vec![(3 * me + c, 6.0)];
+                        let mut near = |ii: usize, jj: usize, kk: usize| row.push((3 * id(ii, jj, kk) + c, -1.0));
+                        if i > 0 {
+                            near(i - 1, j, k)
+                        }
+                        if i + 1 < n {
+                            near(i + 1, j, k)
+                        }
+                        if j > 0 {
+                            near(i, j - 1, k)
+                        }
+                        if j + 1 < n {
+                            near(i, j + 1, k)
+                        }
+                        if k > 0 {
+                            near(i, j, k - 1)
+                        }
+                        if k + 1 < n {
+                            near(i, j, k + 1)
+                        }
+                        row.sort_by_key(|e| e.0);
+                        for (col, v) in row {
+                            a.idx.push(col);
+                            a.val.push(v);
+                        }
+                        a.ptr.push(a.idx.len());
+                    }
+                }
+            }
+        }
+        (a, nodes)
+    }
+
+    #[test]
+    fn tentative_prolongator_reproduces_the_six_rigid_body_modes_in_3d() {
+        use super::super::aggregation::MeshNodes;
+        let (a, nodes) = grid_3d(6);
+        let nns = NearNullSpace::rigid_body(a.nrows, &MeshNodes::Solid(nodes));
+        assert_eq!(nns.count, 6);
+        let (agg, _) = aggregate(&a, &nns.nodes, 0.0);
+        let (p0, coarse) = tentative(a.nrows, &nns, &agg);
+        for k in 0..6 {
+            let bc: Vec<f64> = coarse.modes.iter().map(|m| m[k]).collect();
+            let mut b = vec![0.0; a.nrows];
+            p0.mul(&bc, &mut b);
+            for (d, v) in b.iter().enumerate() {
+                assert!((v - nns.modes[d][k]).abs() < 1e-12, "mode {k} at {d}");
+            }
+        }
+        // an aggregate of a 3D grid spans all six modes: six coarse unknowns each
+        let aggregates = agg.iter().max().unwrap() + 1;
+        assert_eq!(
+            p0.ncols,
+            6 * aggregates,
+            "{} columns for {aggregates} aggregates",
+            p0.ncols
+        );
+        assert!(p0.ncols < a.nrows / 3, "{} of {}", p0.ncols, a.nrows);
+    }
 }

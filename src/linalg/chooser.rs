@@ -15,7 +15,7 @@
 //! iterative solver again). faer's factorisations run sequentially below
 //! [`PARALLEL_FROM`] unknowns (measured: every size) and on the run's threads above.
 
-use super::aggregation::MeshNode;
+use super::aggregation::MeshNodes;
 use super::band_plan::BandPlan;
 use super::factorization::{Factorization, LinearError};
 use super::faer_lu::LuPlan;
@@ -50,7 +50,7 @@ pub struct LinearSolve {
     solver: LinearSolver,
     /// Free equations and reference position of each mesh node (the multigrid's rigid-body
     /// modes), when the owner gave them.
-    nodes: Option<Vec<MeshNode>>,
+    nodes: Option<MeshNodes>,
     /// The pattern the plans below were made for.
     generation: Option<u64>,
     band: Option<BandPlan>,
@@ -117,9 +117,9 @@ impl LinearSolve {
         self.forget_plans();
     }
 
-    /// Give the free equations `(x, y)` and reference position of each mesh node: the
-    /// multigrid preconditioner of the iterative solver is built on their rigid-body modes.
-    pub fn set_nodes(&mut self, nodes: Vec<MeshNode>) {
+    /// Give the free equations and reference position of each mesh node: the multigrid
+    /// preconditioner of the iterative solver is built on their rigid-body modes.
+    pub fn set_nodes(&mut self, nodes: MeshNodes) {
         self.nodes = Some(nodes);
         self.forget_plans();
     }

@@ -13,7 +13,7 @@
 //! hierarchy is reported, and the caller ([`super::chooser::LinearSolve::solve`]) falls back to
 //! the direct LU.
 
-use super::aggregation::MeshNode;
+use super::aggregation::MeshNodes;
 use super::amg::{Hierarchy, NearNullSpace};
 use super::csr::Csr;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -76,7 +76,7 @@ pub struct IterativePlan {
     /// Every entry has its transposed one stored and every diagonal entry is stored (the
     /// symmetry test and the multigrid need both).
     structurally_symmetric: bool,
-    nodes: Vec<MeshNode>,
+    nodes: MeshNodes,
     hierarchy: Option<Mutex<Hierarchy>>,
     build_time: Duration,
     iterations_after_build: usize,
@@ -153,8 +153,8 @@ impl Precond<f64> for VCycle<'_> {}
 
 impl IterativePlan {
     /// The plan for the pattern `(col_ptr, row_idx)` of an `n × n` tangent whose unknowns
-    /// belong to the given 2D nodes (free equations and reference position of each).
-    pub fn new(n: usize, col_ptr: &[usize], row_idx: &[usize], nodes: &[MeshNode]) -> Self {
+    /// belong to the given mesh nodes (free equations and reference position of each).
+    pub fn new(n: usize, col_ptr: &[usize], row_idx: &[usize], nodes: &MeshNodes) -> Self {
         let index = |r: usize, c: usize| {
             let s = &row_idx[col_ptr[c]..col_ptr[c + 1]];
             s.binary_search(&r).ok().map(|k| col_ptr[c] + k)
@@ -202,7 +202,7 @@ impl IterativePlan {
             structurally_symmetric: !diag_slot.contains(&usize::MAX) && !mirror.contains(&usize::MAX),
             mirror,
             diag_slot,
-            nodes: nodes.to_vec(),
+            nodes: nodes.clone(),
             hierarchy: None,
             build_time: Duration::ZERO,
             iterations_after_build: 0,
@@ -285,7 +285,7 @@ impl IterativePlan {
     /// Build a new hierarchy from the current values; returns the time it took.
     fn build(&mut self) -> Duration {
         let started = Instant::now();
-        let mut nns = NearNullSpace::rigid_body_2d(self.fine.nrows, &self.nodes);
+        let mut nns = NearNullSpace::rigid_body(self.fine.nrows, &self.nodes);
         self.stats.constrained_nodes = nns.constrain_stiff_directions(&self.fine, STIFF_NODE_FACTOR);
         let h = Hierarchy::new(self.fine.clone(), nns);
         let sizes = h.sizes();
@@ -413,7 +413,7 @@ mod tests {
             })
             .collect();
         let mut solve = LinearSolve::default();
-        solve.set_nodes(nodes);
+        solve.set_nodes(super::super::aggregation::MeshNodes::Plane(nodes));
         (a, solve, (0..k).map(|i| (0.37 * i as f64).sin()).collect())
     }
 
