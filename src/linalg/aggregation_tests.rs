@@ -68,6 +68,7 @@ fn a_penalty_direction_is_taken_out_of_the_modes() {
 /// middle node along `n = (0.48, 0.6, 0.64)`: that node's six modes lose their component
 /// along `n`, the other nodes' are unchanged.
 #[test]
+#[allow(clippy::needless_range_loop)] // modes and components index several arrays
 fn a_penalty_direction_is_taken_out_of_the_six_modes_of_a_3d_node() {
     let (k, n) = (1e6, [0.48, 0.6, 0.64]);
     let mut dense = [[0.0; 9]; 9];
