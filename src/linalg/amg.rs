@@ -1,5 +1,5 @@
 //! Smoothed-aggregation algebraic multigrid (Vaněk, Mandel & Brezina, Computing 56, 1996)
-//! for the tangent of 2D solids, used as the preconditioner of a Krylov solver on models too
+//! for the tangent of 2D and 3D solids, used as the preconditioner of a Krylov solver on models too
 //! large for a direct factorisation to scale (see [`super::iterative`]).
 //!
 //! Setup, per level `A_l` (the fine level is the tangent):
@@ -10,8 +10,9 @@
 //!    pass 2 adds each remaining node to the aggregate of a neighbour made in pass 1; pass 3
 //!    groups what is left with its free neighbours.
 //! 2. **Tentative prolongator** `P₀`: on each aggregate the rows of the near-null space `B`
-//!    (on the fine level the three rigid-body modes of a 2D solid: translations `(1, 0)`,
-//!    `(0, 1)` and the rotation `(−y, x)` at each node's reference position) are
+//!    (on the fine level the rigid-body modes of a solid: in 2D the translations `(1, 0)`,
+//!    `(0, 1)` and the rotation `(−y, x)`, in 3D three translations and three rotations, at
+//!    each node's reference position) are
 //!    orthonormalised (modified Gram–Schmidt, `B_agg = Q R`); `Q` is the aggregate's block of
 //!    `P₀` and `R` its rows of the coarse near-null space, so `P₀ B_c = B` exactly.
 //! 3. **Smoothed prolongator** `P = (I − ω D⁻¹ A) P₀`, `ω = 4 / (3 ρ(D⁻¹ A))`, `ρ` estimated by
