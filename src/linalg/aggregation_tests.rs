@@ -1,23 +1,25 @@
 use super::*;
 
-/// The nonzero entries of a dense square matrix, by rows.
-fn csr_from_dense<const N: usize>(dense: &[[f64; N]; N]) -> Csr {
-    let mut a = Csr {
-        nrows: N,
-        ncols: N,
-        ptr: vec![0],
-        ..Default::default()
-    };
-    for row in dense {
-        for (c, &v) in row.iter().enumerate() {
-            if v != 0.0 {
-                a.idx.push(c);
-                a.val.push(v);
-            }
+/// Three nodes in a row, each component coupled to the same component of its neighbours by
+/// a unit spring, and a spring `k n ⊗ n` on the middle node (`n.len()` components per node).
+fn springs_in_a_row(k: f64, n: &[f64]) -> Csr {
+    let d = n.len();
+    let mut dense = vec![vec![0.0; 3 * d]; 3 * d];
+    for (i, j) in [(0, 1), (1, 2)] {
+        for c in 0..d {
+            let (p, q) = (d * i + c, d * j + c);
+            dense[p][p] += 1.0;
+            dense[q][q] += 1.0;
+            dense[p][q] -= 1.0;
+            dense[q][p] -= 1.0;
         }
-        a.ptr.push(a.idx.len());
     }
-    a
+    for (r, nr) in n.iter().enumerate() {
+        for (c, nc) in n.iter().enumerate() {
+            dense[d + r][d + c] += k * nr * nc;
+        }
+    }
+    Csr::from_dense_rows(&dense)
 }
 
 /// Three nodes in a row (x = 0, 1, 2), neighbours coupled like springs in both
@@ -26,22 +28,7 @@ fn csr_from_dense<const N: usize>(dense: &[[f64; N]; N]) -> Csr {
 #[test]
 fn a_penalty_direction_is_taken_out_of_the_modes() {
     let (k, n) = (1e6, [0.6, 0.8]);
-    let mut dense = [[0.0; 6]; 6];
-    for (i, j) in [(0, 1), (1, 2)] {
-        for c in 0..2 {
-            let (p, q) = (2 * i + c, 2 * j + c);
-            dense[p][p] += 1.0;
-            dense[q][q] += 1.0;
-            dense[p][q] -= 1.0;
-            dense[q][p] -= 1.0;
-        }
-    }
-    for r in 0..2 {
-        for c in 0..2 {
-            dense[2 + r][2 + c] += k * n[r] * n[c];
-        }
-    }
-    let a = csr_from_dense(&dense);
+    let a = springs_in_a_row(k, &n);
     let nodes: Vec<MeshNode> = (0..3)
         .map(|i| ([Some(2 * i), Some(2 * i + 1)], [i as f64, 0.0]))
         .collect();
@@ -71,22 +58,7 @@ fn a_penalty_direction_is_taken_out_of_the_modes() {
 #[allow(clippy::needless_range_loop)] // modes and components index several arrays
 fn a_penalty_direction_is_taken_out_of_the_six_modes_of_a_3d_node() {
     let (k, n) = (1e6, [0.48, 0.6, 0.64]);
-    let mut dense = [[0.0; 9]; 9];
-    for (i, j) in [(0, 1), (1, 2)] {
-        for c in 0..3 {
-            let (p, q) = (3 * i + c, 3 * j + c);
-            dense[p][p] += 1.0;
-            dense[q][q] += 1.0;
-            dense[p][q] -= 1.0;
-            dense[q][p] -= 1.0;
-        }
-    }
-    for r in 0..3 {
-        for c in 0..3 {
-            dense[3 + r][3 + c] += k * n[r] * n[c];
-        }
-    }
-    let a = csr_from_dense(&dense);
+    let a = springs_in_a_row(k, &n);
     let nodes: Vec<SolidNode> = (0..3)
         .map(|i| ([Some(3 * i), Some(3 * i + 1), Some(3 * i + 2)], [i as f64, 0.5, -0.25]))
         .collect();

@@ -144,24 +144,17 @@ impl Csr {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn dense(a: &Csr) -> Vec<Vec<f64>> {
-        (0..a.nrows)
-            .map(|r| (0..a.ncols).map(|c| a.get(r, c)).collect())
-            .collect()
-    }
-
-    fn from_dense(m: &[Vec<f64>]) -> Csr {
+impl Csr {
+    /// The nonzero entries of dense rows (tests of this module and of the multigrid).
+    pub(crate) fn from_dense_rows<R: AsRef<[f64]>>(m: &[R]) -> Csr {
         let mut a = Csr {
             nrows: m.len(),
-            ncols: m[0].len(),
+            ncols: m.first().map_or(0, |r| r.as_ref().len()),
             ptr: vec![0],
             ..Default::default()
         };
         for row in m {
-            for (c, &v) in row.iter().enumerate() {
+            for (c, &v) in row.as_ref().iter().enumerate() {
                 if v != 0.0 {
                     a.idx.push(c);
                     a.val.push(v);
@@ -171,11 +164,22 @@ mod tests {
         }
         a
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dense(a: &Csr) -> Vec<Vec<f64>> {
+        (0..a.nrows)
+            .map(|r| (0..a.ncols).map(|c| a.get(r, c)).collect())
+            .collect()
+    }
 
     #[test]
     fn product_transpose_and_residual_match_dense_arithmetic() {
-        let a = from_dense(&[vec![2.0, 0.0, -1.0], vec![0.0, 3.0, 0.5], vec![1.0, 0.0, 0.0]]);
-        let b = from_dense(&[vec![1.0, 4.0], vec![0.0, -2.0], vec![3.0, 0.0]]);
+        let a = Csr::from_dense_rows(&[vec![2.0, 0.0, -1.0], vec![0.0, 3.0, 0.5], vec![1.0, 0.0, 0.0]]);
+        let b = Csr::from_dense_rows(&[vec![1.0, 4.0], vec![0.0, -2.0], vec![3.0, 0.0]]);
         let ab = dense(&a.matmul(&b));
         let expect = [[-1.0, 8.0], [1.5, -6.0], [1.0, 4.0]];
         for r in 0..3 {

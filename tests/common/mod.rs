@@ -83,6 +83,26 @@ pub fn assert_same_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, 
     }
 }
 
+/// The normal force of every 3D contact point at the last increment of `b` equals that of
+/// `a` to `tol` times the largest (`what` names the two runs in the message).
+pub fn assert_same_surface_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, &str)) {
+    let (a, b) = (a.surface.last().unwrap(), b.surface.last().unwrap());
+    assert_eq!(a.len(), b.len());
+    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for (p, q) in a.iter().zip(b) {
+        assert!(
+            (p.normal_force - q.normal_force).abs() <= tol * scale,
+            "normal force at node {}: {} ({}) vs {} ({})",
+            p.node,
+            p.normal_force,
+            what.0,
+            q.normal_force,
+            what.1
+        );
+    }
+}
+
 /// Load a 3D scene from TOML text (`origin`: its name in errors) and run it to completion,
 /// keeping every record in memory.
 pub fn solve_solid_text(origin: &str, text: &str) -> (Problem<contrail::model::Solid>, RunSummary, Memory) {
