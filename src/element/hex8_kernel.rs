@@ -283,6 +283,9 @@ fn solve_enhanced(
         }
         *al -= da;
         last = step;
+        // a local iteration still not near after 12 steps (far from Newton's quadratic
+        // rate) evaluates everything from then on, so that the pass that converges is full
+        // (the 2D element's rule, `element/quad.rs`)
         near = step <= EAS_NEAR || it >= 12;
     }
     let wanted = Wanted {
