@@ -430,10 +430,10 @@ fn residual_tangent(
     k: Option<&mut [f64; 64]>,
 ) -> Result<f64, ElementError> {
     let plane_strain = matches!(geo.model, ModelGeometry::PlaneStrain);
-    // `Q4EasSafe` in plane strain evaluates `Q4Eas` first, which checks the same `det F`
-    let checked_inside = kind == ElementKind::Q4EasSafe && plane_strain;
-    let split = matches!(kind, ElementKind::Q4EasStab | ElementKind::Q4EasSafe);
-    if (split || !plane_strain) && !checked_inside {
+    // in plane strain the kernel below checks `det F` on the deformation gradients it forms
+    // (the stabilised and safe kinds evaluate it first: the same values); the other models
+    // are checked here
+    if !plane_strain {
         let det_f = min_det_f(geo, u);
         if det_f <= 0.0 || !det_f.is_finite() {
             return Err(ElementError::Inverted(det_f));
