@@ -355,6 +355,17 @@ fn warning_rows(o: &mut String, s: &RunSummary) {
             ),
         );
     }
+    if s.stabilised_corrections > 0 {
+        row(
+            o,
+            "note",
+            format!(
+                "{} corrections were shifted by pseudo-transient continuation after a line search found no decrease (a body held only by contact that has not closed yet, or a nearly singular tangent); their drag did {} of work on the way, and none acts on the converged states",
+                s.stabilised_corrections,
+                plain(s.stabilisation_work)
+            ),
+        );
+    }
     if s.element_check_errors > 0 {
         row(
             o,

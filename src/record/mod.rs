@@ -130,6 +130,14 @@ pub struct IncrementRecord {
     /// merit function (the shortest step tried was taken).
     #[serde(default)]
     pub line_search_failures: usize,
+    /// Corrections of the converged attempt shifted by the pseudo-transient continuation
+    /// that follows a failed line search (`(K + D/δ) Δu = −R`), and the work of its drag
+    /// along the steps taken (`Σ s² Δuᵀ (D/δ) Δu`, in the model's energy units); no drag
+    /// acts on the converged state.
+    #[serde(default)]
+    pub stabilised_corrections: usize,
+    #[serde(with = "Real", default)]
+    pub stabilisation_work: f64,
     /// Closed contact points whose converged projection lies on an extension of their
     /// segment (kept there against a crossing back and forth at a node of the master).
     #[serde(default)]

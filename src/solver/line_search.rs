@@ -76,6 +76,11 @@ impl<S: crate::model::Dim> Iterate<'_, S> {
     /// tangent. Returns the step.
     pub(super) fn globalise(&mut self) -> Result<f64, NewtonFailure> {
         let phi0 = *self.ws.merits.last().expect("the iterate was tested");
+        if self.ws.continuation.on() {
+            self.ws.watchdog.relaxed = None;
+            // a pseudo-time step is taken whole, halved only where inadmissible
+            return self.line_search(phi0, f64::INFINITY);
+        }
         let monotone = self.ws.watchdog.monotone;
         let relaxed = match self.ws.watchdog.relaxed {
             Some(n) if n >= RELAXED || monotone => return self.back_to_watch(),

@@ -2,6 +2,7 @@
 
 pub mod active_set;
 pub mod augmented;
+mod continuation;
 pub mod element_check;
 pub mod equilibrium;
 pub mod friction_limit;

@@ -54,6 +54,10 @@ pub struct Converged {
     /// Iterations that reached a new active set and so extended the iteration limit
     /// ([`Iterate::count_front`]).
     pub front_iterations: usize,
+    /// Corrections shifted by the pseudo-transient continuation, and the work of its drag
+    /// ([`super::continuation`]).
+    pub stabilised: usize,
+    pub stabilisation_work: f64,
 }
 
 /// Assemble residual (and tangent if `with_tangent`) at `state`, refusing a state in which
@@ -127,6 +131,8 @@ pub struct Workspace {
     /// ([`Iterate::expects_convergence`]).
     pub(super) last_start_accepted: bool,
     pub(super) last_first_rate: Option<f64>,
+    /// Shifted corrections after a failed line search ([`super::continuation`]).
+    pub(super) continuation: super::continuation::Continuation,
 }
 
 /// Which increment is solved, to what time, and from what start.
@@ -238,6 +244,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
         ws.line_search_failures = 0;
         ws.front_iterations = 0;
         ws.watchdog.reset();
+        ws.continuation.reset();
         for p in &model.prescribed {
             state.u[p.dof] = p.ramp.at(target.t);
         }
@@ -327,6 +334,8 @@ impl<'a, S: Dim> Iterate<'a, S> {
             accepted_by,
             line_search_failures: self.ws.line_search_failures,
             front_iterations: self.ws.front_iterations,
+            stabilised: self.ws.continuation.corrections,
+            stabilisation_work: self.ws.continuation.work,
         }
     }
 
@@ -363,7 +372,13 @@ impl<'a, S: Dim> Iterate<'a, S> {
             self.norms.e0 = energy;
         }
         self.norms.e_last = energy;
+        let failures = self.ws.line_search_failures;
         let step = self.globalise()?;
+        let growth = self.asm.merit(&self.state.contact).sqrt() / self.norms.rn;
+        self.ws.continuation.took(&self.ws.du, step, growth);
+        if self.ws.line_search_failures > failures {
+            self.ws.continuation.engage();
+        }
         self.state.contact.set_kink(Kink::Open);
         Ok((energy, step))
     }
@@ -529,7 +544,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
         for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
-        self.asm.solve(&mut ws.du)?;
+        ws.continuation.solve(self.asm, &mut ws.du)?;
         Ok(())
     }
 

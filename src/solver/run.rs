@@ -93,6 +93,11 @@ pub struct RunSummary {
     /// Line searches that found no decrease of the merit function (their shortest step was
     /// taken), over the run's converged increments.
     pub line_search_failures: usize,
+    /// Corrections shifted by the pseudo-transient continuation after a failed line search,
+    /// and the work of its drag, over the run's converged increments
+    /// ([`super::newton::Converged::stabilised`]).
+    pub stabilised_corrections: usize,
+    pub stabilisation_work: f64,
     /// Iterations that reached a new active set and so extended the iteration limit
     /// (a moving contact front), over the run's converged increments.
     pub front_iterations: usize,

@@ -118,6 +118,8 @@ impl<S: Dim> Stepping<'_, S> {
         self.report_lost_histories(&surface_points, obs)?;
         self.summary.on_extension += usize::from(done.on_extension > 0);
         self.summary.line_search_failures += done.conv.line_search_failures;
+        self.summary.stabilised_corrections += done.conv.stabilised;
+        self.summary.stabilisation_work += done.conv.stabilisation_work;
         self.summary.front_iterations += done.conv.front_iterations;
         let equilibrium = imbalance.map_or(0.0, |i| i.relative);
         let (conv, cutbacks, on_extension) = (done.conv, done.cutbacks, done.on_extension);
@@ -174,6 +176,8 @@ impl<S: Dim> Stepping<'_, S> {
             reaction_z,
             accepted_by: conv.accepted_by.as_str().into(),
             line_search_failures: conv.line_search_failures,
+            stabilised_corrections: conv.stabilised,
+            stabilisation_work: conv.stabilisation_work,
             on_extension,
             front_iterations: conv.front_iterations,
             equilibrium,
