@@ -5,6 +5,7 @@ pub mod augmented;
 mod continuation;
 pub mod element_check;
 pub mod equilibrium;
+pub mod faceted_node;
 pub mod friction_limit;
 mod line_search;
 pub mod monitor;

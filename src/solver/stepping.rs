@@ -4,6 +4,7 @@
 
 use super::augmented::solve_augmented;
 use super::equilibrium::{Imbalance, EQUILIBRIUM_TOLERANCE};
+use super::faceted_node::faceted_node;
 use super::friction_limit::friction_limit;
 use super::newton::{Converged, IncrementTarget, NewtonFailure, Workspace};
 use super::run::{RunSummary, SolveError, UnstableSummary};
@@ -315,15 +316,16 @@ impl<'a, S: Dim> Stepping<'a, S> {
             log(obs, LogLevel::Warning, increment, t_new, message)?;
         }
         if last {
+            let points = self.ws.watch.report(&trial.contact, model.plane(), 8);
             return Err(SolveError::StepFailed {
                 increment,
                 t: t_new,
                 dt,
                 cutbacks,
-                reason: self.failure_reason(&f),
+                reason: self.failure_reason(&f, &points),
                 residuals: self.ws.residuals.clone(),
                 kind: f.kind(),
-                points: self.ws.watch.report(&trial.contact, model.plane(), 8),
+                points,
             });
         }
         let message = format!("increment {increment} at t = {t_new:.6}: {f}; cutting the step {dt:.3e} in half");
@@ -335,9 +337,9 @@ impl<'a, S: Dim> Stepping<'a, S> {
     }
 
     /// What the run's failure says: the Newton failure, and when the increment may have no
-    /// solution at all because a body is at its friction limit, that diagnosis
-    /// ([`friction_limit`]).
-    fn failure_reason(&self, f: &NewtonFailure) -> String {
+    /// solution at all because a body is at its friction limit ([`friction_limit`]) or a
+    /// changing point sits at a node of a faceted master ([`faceted_node`]), that diagnosis.
+    fn failure_reason(&self, f: &NewtonFailure, points: &[ChangingPoint]) -> String {
         let may_lack_a_solution = matches!(
             f.kind(),
             FailureKind::NoConvergence
@@ -346,10 +348,21 @@ impl<'a, S: Dim> Stepping<'a, S> {
                 | FailureKind::LinearSolver
                 | FailureKind::NonFinite
         );
-        match may_lack_a_solution.then(|| friction_limit(self.model.plane(), &self.committed.contact, self.t)) {
-            Some(Some(hint)) => format!("{f}; {hint}"),
-            _ => f.to_string(),
+        if !may_lack_a_solution {
+            return f.to_string();
         }
+        let plane = self.model.plane();
+        let hints: Vec<String> = [
+            friction_limit(plane, &self.committed.contact, self.t),
+            faceted_node(plane, points),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        std::iter::once(f.to_string())
+            .chain(hints)
+            .collect::<Vec<_>>()
+            .join("; ")
     }
 
     /// After `grow_after` converged increments in a row, the step grows toward the nominal.
