@@ -428,12 +428,16 @@ pub fn pack_nodes(out: &mut Vec<u8>, nodes: &[[f64; 2]]) {
 
 /// Append the shuffled hexadecimal text of the values `values` (see [`PackedPositions`]).
 pub fn pack_values(out: &mut Vec<u8>, values: &[f64]) {
-    out.reserve(16 * values.len());
-    for k in 0..8 {
-        for v in values {
+    let start = out.len();
+    out.resize(start + 16 * values.len(), 0);
+    let rows = out[start..].chunks_exact_mut(2 * values.len().max(1));
+    // one row per byte of the doubles, least significant first, written in place (no
+    // capacity check per byte: the writer thread's cost, docs/performance.md)
+    for (k, row) in rows.enumerate() {
+        for (digits, v) in row.chunks_exact_mut(2).zip(values) {
             let b = (v.to_bits() >> (8 * k)) as u8;
-            out.push(HEX[(b >> 4) as usize]);
-            out.push(HEX[(b & 15) as usize]);
+            digits[0] = HEX[(b >> 4) as usize];
+            digits[1] = HEX[(b & 15) as usize];
         }
     }
 }
