@@ -11,6 +11,7 @@ mod line_search;
 pub mod monitor;
 pub mod newton;
 mod newton_failure;
+mod newton_types;
 pub mod penetration;
 pub mod run;
 mod search_reach;
