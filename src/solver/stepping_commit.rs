@@ -82,6 +82,18 @@ pub(super) struct ContactCommit {
 }
 
 impl<S: Dim> Stepping<'_, S> {
+    /// Add what Newton's method did in a converged increment to the run's summary.
+    fn count_newton(&mut self, conv: &Converged, on_extension: usize) {
+        let s = &mut self.summary;
+        s.newton_iterations += conv.iterations;
+        s.augmentations += conv.augmentations;
+        s.on_extension += usize::from(on_extension > 0);
+        s.line_search_failures += conv.line_search_failures;
+        s.stabilised_corrections += conv.stabilised;
+        s.stabilisation_work += conv.stabilisation_work;
+        s.front_iterations += conv.front_iterations;
+    }
+
     /// Make the converged increment the committed state: records of the converged iterate
     /// (compared with the previous increment), the contact history committed, the records
     /// handed to `obs`, the elements checked.
@@ -99,8 +111,7 @@ impl<S: Dim> Stepping<'_, S> {
         let t_prev = self.t;
         self.t = done.t_new;
         self.fref = self.fref.max(done.conv.reference);
-        self.summary.newton_iterations += done.conv.iterations;
-        self.summary.augmentations += done.conv.augmentations;
+        self.count_newton(&done.conv, done.on_extension);
         let handed = Instant::now();
         let ContactCommit {
             points,
@@ -116,11 +127,6 @@ impl<S: Dim> Stepping<'_, S> {
         self.summary.crossings += crossings.len() + surface_crossings;
         self.report_history_jumps(&crossings, obs)?;
         self.report_lost_histories(&surface_points, obs)?;
-        self.summary.on_extension += usize::from(done.on_extension > 0);
-        self.summary.line_search_failures += done.conv.line_search_failures;
-        self.summary.stabilised_corrections += done.conv.stabilised;
-        self.summary.stabilisation_work += done.conv.stabilisation_work;
-        self.summary.front_iterations += done.conv.front_iterations;
         let equilibrium = imbalance.map_or(0.0, |i| i.relative);
         let (conv, cutbacks, on_extension) = (done.conv, done.cutbacks, done.on_extension);
         let rec = self.increment_record((conv, cutbacks, on_extension), t_prev, t_inc, monitors, equilibrium);
