@@ -66,38 +66,37 @@ pub fn solve_ok(problem: &Problem) -> (RunSummary, Memory) {
 /// The normal force of every contact point at the last increment of `b` equals that of `a`
 /// to `tol` times the largest (`what` names the two runs in the message).
 pub fn assert_same_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, &str)) {
-    let (a, b) = (a.contact.last().unwrap(), b.contact.last().unwrap());
-    assert_eq!(a.len(), b.len());
-    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
-    assert!(scale > 0.0);
-    for (p, q) in a.iter().zip(b) {
-        assert!(
-            (p.normal_force - q.normal_force).abs() <= tol * scale,
-            "normal force at x = {}: {} ({}) vs {} ({})",
-            p.position[0],
-            p.normal_force,
-            what.0,
-            q.normal_force,
-            what.1
-        );
-    }
+    let forces = |m: &Memory| -> Vec<(String, f64)> {
+        let last = m.contact.last().unwrap();
+        last.iter()
+            .map(|p| (format!("x = {}", p.position[0]), p.normal_force))
+            .collect()
+    };
+    assert_same_forces(&forces(a), &forces(b), tol, what);
 }
 
 /// The normal force of every 3D contact point at the last increment of `b` equals that of
 /// `a` to `tol` times the largest (`what` names the two runs in the message).
 pub fn assert_same_surface_normal_forces(a: &Memory, b: &Memory, tol: f64, what: (&str, &str)) {
-    let (a, b) = (a.surface.last().unwrap(), b.surface.last().unwrap());
+    let forces = |m: &Memory| -> Vec<(String, f64)> {
+        let last = m.surface.last().unwrap();
+        last.iter()
+            .map(|p| (format!("node {}", p.node), p.normal_force))
+            .collect()
+    };
+    assert_same_forces(&forces(a), &forces(b), tol, what);
+}
+
+/// Labelled forces of `b` equal those of `a`, one by one, to `tol` times the largest of `a`.
+fn assert_same_forces(a: &[(String, f64)], b: &[(String, f64)], tol: f64, what: (&str, &str)) {
     assert_eq!(a.len(), b.len());
-    let scale = a.iter().map(|p| p.normal_force.abs()).fold(0.0, f64::max);
+    let scale = a.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
     assert!(scale > 0.0);
-    for (p, q) in a.iter().zip(b) {
+    for ((at, p), (_, q)) in a.iter().zip(b) {
         assert!(
-            (p.normal_force - q.normal_force).abs() <= tol * scale,
-            "normal force at node {}: {} ({}) vs {} ({})",
-            p.node,
-            p.normal_force,
+            (p - q).abs() <= tol * scale,
+            "normal force at {at}: {p} ({}) vs {q} ({})",
             what.0,
-            q.normal_force,
             what.1
         );
     }
