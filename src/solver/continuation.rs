@@ -40,9 +40,12 @@ pub const START: f64 = 1e-2;
 /// The factor by which `1/δ` falls after each shifted step that leaves the residual as it
 /// was (Marquardt's ν).
 pub const NU: f64 = 10.0;
-/// `1/δ` below which the drag is dropped (the correction is Newton's).
+/// `1/δ` below which the drag is dropped: a shift of 1e-10 of the diagonal changes the
+/// correction by about that fraction, below the default residual tolerance (1e-9 of the
+/// force scale), so the correction is Newton's to the digits the test sees.
 pub const OFF_BELOW: f64 = 1e-10;
-/// The largest `1/δ` (where the residual keeps rising, the steps stay finite).
+/// The largest `1/δ`: a drag 1e8 times the diagonal leaves steps of about 1e-8 of an
+/// unshifted one, near the residual tolerance; more would only freeze the iterate.
 pub const MOST: f64 = 1e8;
 
 /// The continuation's state within one attempt.

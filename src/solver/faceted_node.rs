@@ -7,13 +7,9 @@
 //! for smoothing the master; the seed smooths its master for the same reason). The failure
 //! should say so and name the remedy instead of only "no convergence".
 
+use crate::contact::pairing::HELD_EXTENSION;
 use crate::model::{Master, Model, Smoothing};
 use crate::record::ChangingPoint;
-
-/// How close to a segment's end (in `|ξ|`, the segment spanning `[−1, 1]`) a point counts as
-/// at the node: 1e-3 of the segment's half-length, about the overlap a point is kept on an
-/// extension of its segment against a crossing back and forth.
-pub const AT_NODE: f64 = 1e-3;
 
 /// The diagnosis of a failed increment whose changing contact points include one at a node
 /// of a faceted deformable master (`Smoothing::None`): one sentence to append to the
@@ -22,7 +18,9 @@ pub fn faceted_node(model: &Model, points: &[ChangingPoint]) -> Option<String> {
     let p = points.iter().find(|p| {
         let pair = &model.contacts[p.pair];
         let faceted = matches!(pair.master, Master::Face { .. }) && pair.face_smoothing() == Smoothing::None;
-        faceted && p.xi.is_finite() && p.xi.abs() >= 1.0 - AT_NODE
+        // at the node: within the band about a segment's end where the pairing already holds
+        // a point chattering across a kink of the master
+        faceted && p.xi.is_finite() && (p.xi.abs() - 1.0).abs() <= HELD_EXTENSION
     })?;
     Some(format!(
         "{} of `{}` sits at a node of its faceted master (ξ = {}), where the face's normal jumps: a node-to-segment contact has no equilibrium there while the point is held at the node, so this may be where the method fails; smooth the master (`master_smoothing = \"hermite\"` or `\"bezier\"` on the contact)",

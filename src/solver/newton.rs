@@ -283,8 +283,10 @@ impl<'a, S: Dim> Iterate<'a, S> {
         self.norms.e_last = energy;
         let failures = self.ws.line_search_failures;
         let step = self.globalise()?;
-        let growth = self.asm.merit(&self.state.contact).sqrt() / self.norms.rn;
-        self.ws.continuation.took(&self.ws.du, step, growth);
+        if self.ws.continuation.on() {
+            let growth = self.asm.merit(&self.state.contact).sqrt() / self.norms.rn;
+            self.ws.continuation.took(&self.ws.du, step, growth);
+        }
         if self.ws.line_search_failures > failures {
             self.ws.continuation.engage();
         }
