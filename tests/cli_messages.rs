@@ -1,7 +1,8 @@
 //! What `contrail` tells a user: "did you mean" for scene names and subcommands, scenes as
 //! templates, several `--out` files, the summary of a completed and of a failed run (plain
 //! numbers, plurals, compact residuals, the command to inspect the recording) and iteration
-//! counts that agree with `contrail inspect`.
+//! counts that agree with `contrail inspect`; the plane model `contrail check` advises for an
+//! extruded 3D scene.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -69,6 +70,23 @@ fn a_mistyped_subcommand_gets_a_suggestion() {
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains(&format!("'{meant}'")), "{typed}: {err}");
     }
+}
+
+#[test]
+fn check_advises_the_plane_model_of_an_extruded_3d_scene() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slice-3d.toml");
+    let o = contrail(&["check", s(&data)]);
+    assert!(o.status.success(), "{}", text(&o).1);
+    let out = text(&o).0;
+    assert!(
+        out.contains("a plane-strain model of the section would do, with about 90 DOFs instead of 405"),
+        "{out}"
+    );
+    // the same block with one end free along z is told nothing
+    let o = contrail(&["check", s(&data), "--set", "fix=[]"]);
+    assert!(o.status.success() && !text(&o).0.contains("advice"), "{}", text(&o).0);
+    let o = contrail(&["check", "hertz-3d"]);
+    assert!(o.status.success() && !text(&o).0.contains("advice"));
 }
 
 #[test]

@@ -7,6 +7,7 @@ pub mod diff;
 pub mod diff_surface;
 pub mod elastica;
 pub mod export;
+pub mod hertz_point;
 pub mod inspect;
 pub mod inspect_surface;
 pub mod metrics;

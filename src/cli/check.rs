@@ -34,6 +34,9 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         for b in &m.bodies {
             outln!("  body {}: 3d, {}", b.name, b.kind.name())?;
         }
+        if let Some(advice) = contrail::scene::model_advice::plane_advice(m) {
+            outln!("  {}", advice.line())?;
+        }
         return Ok(ExitCode::SUCCESS);
     }
     let problem = build(&src, &scene)?;

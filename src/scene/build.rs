@@ -239,7 +239,7 @@ pub fn build(src: &SceneSource, s: &SceneFile) -> Result<Problem, SceneError> {
             origin: src.origin.clone(),
             location: String::new(),
             message: format!("scene `{}` has 3D bodies (a `box` mesh)", s.name),
-            hint: "3D scenes are run by `contrail run` and `contrail check`; sweeps, the service and the 2D tools take 2D scenes only for now".into(),
+            hint: "3D scenes are run by `contrail run`, `contrail check` and `contrail sweep`; the service and the 2D tools take 2D scenes only for now".into(),
         });
     }
     Ok(Problem {
@@ -273,6 +273,7 @@ pub fn build_model(src: &SceneSource, s: &SceneFile) -> Result<Model, SceneError
     steps::add_body_loads(&cx, s, &mut m, end)?;
     super::pressure::add_pressures(&cx, s, &mut m, end)?;
     steps::add_rigid(&cx, s, &mut m, end)?;
+    super::axisymmetry::refuse_asymmetry(&cx, s, &m)?;
     steps::add_contacts(&cx, s, &mut m)?;
     super::body_model::contact_weights(&cx, &mut m)?;
     super::overclosure::adjust_overclosures(&mut m, s);

@@ -3,6 +3,7 @@
 //! Errors name the file, the line and column, and how to fix it; `--set key.path=value`
 //! overrides are applied to the parsed TOML before it is checked.
 
+mod axisymmetry;
 mod body_model;
 mod build;
 pub mod build_pairs;
@@ -13,6 +14,7 @@ pub mod fillet;
 pub mod initial_contact;
 mod mesh;
 pub mod mesh_spec;
+pub mod model_advice;
 pub mod monitors;
 mod overclosure;
 mod overrides;

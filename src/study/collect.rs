@@ -37,8 +37,13 @@ pub struct RunData {
     pub curve: Vec<[f64; 3]>,
     pub crossings: Vec<CrossingJump>,
     /// `[x, normal force]` of every contact point with a position at the last converged
-    /// increment.
+    /// increment: `x` of a slave node at rest (the reference configuration, where
+    /// small-strain analytic solutions are stated), of a rigid slave where it is.
     pub final_contact: Vec<[f64; 2]>,
+    /// `[x, y, normal force]` of every node-to-surface point (3D) at the last converged
+    /// increment, its slave node at rest.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub final_surface_contact: Vec<[f64; 3]>,
     /// Sum of the reactions `[x, y]` at the last converged increment.
     pub final_reaction: [f64; 2],
     pub contact_lost: Vec<ContactLoss>,
@@ -57,6 +62,33 @@ pub struct Collector {
     pair_names: Vec<String>,
     /// Per pair: has had a closed point; is already recorded as lost.
     pair_state: Vec<(bool, bool)>,
+}
+
+impl Collector {
+    /// The last increment's contact points where a slave node sits at rest (small-strain
+    /// analytic references are in the reference configuration), a rigid slave where it is.
+    fn final_contact(&mut self, view: &StepView) {
+        let plane = view.model.plane();
+        let at_rest = |p: &crate::record::ContactPointRecord| {
+            let slave = plane.contacts.get(p.pair).and_then(|c| c.slaves.get(p.slave));
+            match slave {
+                Some(crate::model::Slave::Node(n)) => plane.nodes[*n][0],
+                _ => p.position[0],
+            }
+        };
+        self.data.final_contact = (view.contact.iter())
+            .map(|p| [at_rest(p), p.normal_force])
+            .filter(|v| v.iter().all(|x| x.is_finite()))
+            .collect();
+        let nodes = match view.model {
+            crate::model::ModelRef::Solid(m) => Some(&m.nodes),
+            crate::model::ModelRef::Plane(_) => None,
+        };
+        self.data.final_surface_contact = (view.surface.iter())
+            .filter_map(|p| nodes.and_then(|n| n.get(p.node)).map(|x| [x[0], x[1], p.normal_force]))
+            .filter(|v| v.iter().all(|x| x.is_finite()))
+            .collect();
+    }
 }
 
 impl Observer for Collector {
@@ -97,10 +129,7 @@ impl Observer for Collector {
         // a point without a position (a rigid vertex open on its face: NaN) is left out, so
         // that the run record holds finite numbers only (JSON has no NaN: it would be written
         // as null and the record would not read back)
-        self.data.final_contact = (view.contact.iter())
-            .map(|p| [p.position[0], p.normal_force])
-            .filter(|v| v.iter().all(|x| x.is_finite()))
-            .collect();
+        self.final_contact(view);
         self.data.final_reaction = rec.reaction_total;
         let mut closed = vec![false; self.pair_state.len()];
         for p in view.contact {

@@ -15,6 +15,7 @@ pub use progress::{ProgressLine, ProgressSink};
 
 use crate::record::mcap::sink::{McapOptions, McapSink};
 use crate::record::{Fanout, Observer};
+use crate::scene::AnyProblem;
 use crate::solver::SolveError;
 use serde::{Deserialize, Serialize};
 use std::io::BufWriter;
@@ -143,7 +144,7 @@ impl Study {
 
     /// Check that the scene loads with its overrides (no run).
     pub fn check(&self) -> Result<(), crate::scene::SceneError> {
-        crate::load_scene(&self.scene, &self.sets).map(|_| ())
+        crate::load_any_scene(&self.scene, &self.sets).map(|_| ())
     }
 
     /// Run the study. A scene that does not load is a [`FailureKind::BadInput`] outcome, a
@@ -155,7 +156,7 @@ impl Study {
         observers: &mut [&mut dyn Observer],
         stop: &AtomicBool,
     ) -> Result<StudyOutcome, StudyError> {
-        let (src, mut problem) = match crate::load_scene(&self.scene, &self.sets) {
+        let (src, problem) = match crate::load_any_scene(&self.scene, &self.sets) {
             Ok(x) => x,
             Err(e) => {
                 return Ok(StudyOutcome {
@@ -170,10 +171,25 @@ impl Study {
                 })
             }
         };
+        match problem {
+            AnyProblem::Plane(p) => self.run_problem(&src, p, opts, observers, stop),
+            AnyProblem::Solid(p) => self.run_problem(&src, p, opts, observers, stop),
+        }
+    }
+
+    /// Run a loaded problem of either dimension, recorded as `opts` asks.
+    fn run_problem<S: crate::model::Dim>(
+        &self,
+        src: &crate::scene::SceneSource,
+        mut problem: crate::problem::Problem<S>,
+        opts: &RunOptions,
+        observers: &mut [&mut dyn Observer],
+        stop: &AtomicBool,
+    ) -> Result<StudyOutcome, StudyError> {
         if problem.settings.newton.threads == 0 {
             problem.settings.newton.threads = opts.threads;
         }
-        let info = crate::run_info(&src, &self.sets, &problem);
+        let info = crate::run_info(src, &self.sets, &problem);
         let mut mcap = match &opts.mcap {
             Some(p) => Some(create(p, opts.positions_every)?),
             None => None,

@@ -90,6 +90,7 @@ fn lenient(v: &Value) -> StudyOutcome {
             curve: entries(&d["curve"]),
             crossings: entries(&d["crossings"]),
             final_contact: entries(&d["final_contact"]),
+            final_surface_contact: entries(&d["final_surface_contact"]),
             final_reaction: serde_json::from_value(d["final_reaction"].clone()).unwrap_or_default(),
             contact_lost: entries(&d["contact_lost"]),
         },

@@ -100,6 +100,16 @@ pub enum Reference {
     },
     /// Hertz line contact (half model): half-width and peak pressure.
     Hertz { young: f64, poisson: f64, radius: f64 },
+    /// Hertz point contact of a rigid sphere, axisymmetric or 3D: contact radius and peak
+    /// pressure ([`crate::analysis::hertz_point`]); a 3D model is `1/copies` of the whole (4: a
+    /// quarter model), an axisymmetric model's forces are totals.
+    HertzPoint {
+        young: f64,
+        poisson: f64,
+        radius: f64,
+        #[serde(default = "unit")]
+        copies: f64,
+    },
     /// Coulomb sliding: total tangential over normal reaction equals μ at the end
     /// (`mu` default: the run's `contact.mu`).
     Coulomb {

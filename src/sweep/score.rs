@@ -5,6 +5,7 @@
 use super::index::{IndexRow, Metrics, RunRecord};
 use super::plan::{Checks, MonitorQuantity, Plan, Reference, StudyPlan};
 use super::SweepError;
+use crate::analysis::hertz_point::{hertz_point, PointContact};
 use crate::analysis::{analytic, metrics};
 use crate::study::{FailureKind, Status};
 use std::collections::BTreeMap;
@@ -82,6 +83,27 @@ fn analytic_metrics(s: &StudyPlan, rec: &RunRecord, m: &mut Metrics) {
     match &s.reference {
         Reference::Hertz { young, poisson, radius } => {
             if let Some(h) = analytic::hertz(&rec.outcome.data.final_contact, *young, *poisson, *radius) {
+                let (ea, ep) = h.errors();
+                m.analytic_err = finite(Some(ea.abs().max(ep.abs())));
+                m.analytic_detail = format!("a {:+.3e}, p0 {:+.3e}", ea, ep);
+            }
+        }
+        Reference::HertzPoint {
+            young,
+            poisson,
+            radius,
+            copies,
+        } => {
+            let data = &rec.outcome.data;
+            let contact = if data.final_surface_contact.is_empty() {
+                PointContact::Axisymmetric(&data.final_contact)
+            } else {
+                PointContact::Solid {
+                    points: &data.final_surface_contact,
+                    copies: *copies,
+                }
+            };
+            if let Some(h) = hertz_point(contact, *young, *poisson, *radius) {
                 let (ea, ep) = h.errors();
                 m.analytic_err = finite(Some(ea.abs().max(ep.abs())));
                 m.analytic_detail = format!("a {:+.3e}, p0 {:+.3e}", ea, ep);
@@ -276,6 +298,7 @@ pub fn score(
             }
             Reference::Csv { path, x, y } => (Some(read_csv_curve(path, x, y)?), format!("csv:{path}")),
             Reference::Hertz { .. } => (None, "hertz".into()),
+            Reference::HertzPoint { .. } => (None, "hertz-point".into()),
             Reference::Coulomb { .. } => (None, "coulomb".into()),
             Reference::Value { value, .. } => (None, format!("value:{value}")),
         };
