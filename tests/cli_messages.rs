@@ -1,8 +1,8 @@
 //! What `contrail` tells a user: "did you mean" for scene names and subcommands, scenes as
 //! templates, several `--out` files, the summary of a completed and of a failed run (plain
 //! numbers, plurals, compact residuals, the command to inspect the recording) and iteration
-//! counts that agree with `contrail inspect`; the plane model `contrail check` advises for an
-//! extruded 3D scene.
+//! counts that agree with `contrail inspect`; the plane or axisymmetric model `contrail check`
+//! advises for a 3D scene.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -73,7 +73,7 @@ fn a_mistyped_subcommand_gets_a_suggestion() {
 }
 
 #[test]
-fn check_advises_the_plane_model_of_an_extruded_3d_scene() {
+fn check_advises_the_plane_or_axisymmetric_model_of_a_3d_scene() {
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/slice-3d.toml");
     let o = contrail(&["check", s(&data)]);
     assert!(o.status.success(), "{}", text(&o).1);
@@ -87,6 +87,15 @@ fn check_advises_the_plane_model_of_an_extruded_3d_scene() {
     assert!(o.status.success() && !text(&o).0.contains("advice"), "{}", text(&o).0);
     let o = contrail(&["check", "hertz-3d"]);
     assert!(o.status.success() && !text(&o).0.contains("advice"));
+    // the quarter of a disc between plates: an axisymmetric model would do
+    let disc = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/disc-3d.toml");
+    let out = text(&contrail(&["check", s(&disc)])).0;
+    assert!(
+        out.contains(
+            "an axisymmetric model of its section (the plane y = 0) would do, with about 306 DOFs instead of 5859"
+        ),
+        "{out}"
+    );
 }
 
 #[test]

@@ -37,6 +37,9 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
         if let Some(advice) = contrail::scene::model_advice::plane_advice(m) {
             outln!("  {}", advice.line())?;
         }
+        if let Some(advice) = contrail::scene::model_advice_axisym::axisymmetric_advice(m) {
+            outln!("  {}", advice.line())?;
+        }
         return Ok(ExitCode::SUCCESS);
     }
     let problem = build(&src, &scene)?;

@@ -15,6 +15,7 @@ pub mod initial_contact;
 mod mesh;
 pub mod mesh_spec;
 pub mod model_advice;
+pub mod model_advice_axisym;
 pub mod monitors;
 mod overclosure;
 mod overrides;
