@@ -19,35 +19,48 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
     let scene = parse(&src, &a.sets)?;
     if contrail::scene::build_solid::is_3d(&scene) {
         let problem = contrail::scene::build_solid::build_solid(&src, &scene)?;
-        let m = &problem.model;
-        outln!(
-            "{}: ok — 3D, {} bodies, {} nodes, {} hexahedra, {} DOFs ({} prescribed), {} increments to t = {}",
-            src.origin,
-            m.bodies.len(),
-            m.nodes.len(),
-            m.elements.len(),
-            m.dof_count(),
-            m.prescribed.len(),
-            problem.settings.stepping.increments,
-            problem.settings.stepping.end
-        )?;
-        for b in &m.bodies {
-            outln!("  body {}: 3d, {}", b.name, b.kind.name())?;
-        }
-        if let Some(advice) = contrail::scene::model_advice::plane_advice(m) {
-            outln!("  {}", advice.line())?;
-        }
-        if let Some(advice) = contrail::scene::model_advice_axisym::axisymmetric_advice(m) {
-            outln!("  {}", advice.line())?;
-        }
-        return Ok(ExitCode::SUCCESS);
+        report_solid(&src.origin, &problem)?;
+    } else {
+        let problem = build(&src, &scene)?;
+        report_plane(&src.origin, &problem)?;
+        report_rigid_and_contacts(&scene, &problem.model)?;
     }
-    let problem = build(&src, &scene)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A 3D scene: its size, its bodies and the smaller model that would do, if any.
+fn report_solid(origin: &str, problem: &contrail::problem::Problem<contrail::model::Solid>) -> anyhow::Result<()> {
+    let m = &problem.model;
+    outln!(
+        "{}: ok — 3D, {} bodies, {} nodes, {} hexahedra, {} DOFs ({} prescribed), {} increments to t = {}",
+        origin,
+        m.bodies.len(),
+        m.nodes.len(),
+        m.elements.len(),
+        m.dof_count(),
+        m.prescribed.len(),
+        problem.settings.stepping.increments,
+        problem.settings.stepping.end
+    )?;
+    for b in &m.bodies {
+        outln!("  body {}: 3d, {}", b.name, b.kind.name())?;
+    }
+    if let Some(advice) = contrail::scene::model_advice::plane_advice(m) {
+        outln!("  {}", advice.line())?;
+    }
+    if let Some(advice) = contrail::scene::model_advice_axisym::axisymmetric_advice(m) {
+        outln!("  {}", advice.line())?;
+    }
+    Ok(())
+}
+
+/// A 2D scene: its size, its bodies' models and the builder's notes.
+fn report_plane(origin: &str, problem: &contrail::problem::Problem) -> anyhow::Result<()> {
     let m = &problem.model;
     let slaves: usize = m.contacts.iter().map(|c| c.slaves.len()).sum();
     outln!(
         "{}: ok — {} bodies, {} nodes, {} elements, {} DOFs ({} prescribed), {} rigid bodies, {} contact pairs ({} slave points), {} increments to t = {}",
-        src.origin,
+        origin,
         m.bodies.len(),
         m.nodes.len(),
         m.elements.len(),
@@ -65,6 +78,14 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
     for note in &m.notes {
         outln!("  note: {note}")?;
     }
+    Ok(())
+}
+
+/// A 2D scene's rigid arcs and outlines (which side is solid) and its contact pairs.
+fn report_rigid_and_contacts(
+    scene: &contrail::scene::types::SceneFile,
+    m: &contrail::model::Model,
+) -> anyhow::Result<()> {
     for r in &scene.rigid {
         if let Some(arc) = &r.arc {
             let side = ArcSide::of(arc.from_deg, arc.to_deg);
@@ -114,7 +135,7 @@ pub fn check(a: CheckArgs) -> anyhow::Result<ExitCode> {
             c.transfer.name()
         )?;
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(())
 }
 
 /// Where a rigid outline's solid is: the inward normal (the tangent turned +90°) in the

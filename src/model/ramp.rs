@@ -24,6 +24,11 @@ impl Ramp {
         }
     }
 
+    /// Zero at every time (every knot's value zero; no knot at all is zero too).
+    pub fn is_zero(&self) -> bool {
+        self.knots.iter().all(|(_, v)| *v == 0.0)
+    }
+
     pub fn at(&self, t: f64) -> f64 {
         let k = &self.knots;
         if k.is_empty() {

@@ -15,9 +15,7 @@ use super::types::SceneFile;
 use super::SceneError;
 use crate::element::quad::Kinematics;
 use crate::model::{Model, Piece, RigidShape};
-
-/// Points sampled along each arc of a rigid outline for its least `x` (and both ends).
-const ARC_SAMPLES: usize = 256;
+use std::f64::consts::PI;
 
 /// Refuse the symmetry-breaking loads and motions of an axisymmetric scene (see the module).
 pub(super) fn refuse_asymmetry(cx: &Ctx, s: &SceneFile, m: &Model) -> Result<(), SceneError> {
@@ -27,7 +25,7 @@ pub(super) fn refuse_asymmetry(cx: &Ctx, s: &SceneFile, m: &Model) -> Result<(),
     let size = m.nodes.iter().fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()));
     let on_axis = super::body_model::AXIS_TOLERANCE * size.max(f64::MIN_POSITIVE);
     for r in &m.rigid {
-        let moves_sideways = r.motion[0].knots.iter().any(|(_, x)| *x != 0.0);
+        let moves_sideways = !r.motion[0].is_zero();
         let reach = least_x(&r.shape);
         if moves_sideways && reach <= on_axis {
             return Err(cx.err(
@@ -63,9 +61,23 @@ fn least_x(shape: &RigidShape) -> f64 {
             .iter()
             .map(|p| match p {
                 Piece::Segment { a, b } => a[0].min(b[0]),
-                Piece::Arc { .. } => (0..=ARC_SAMPLES)
-                    .map(|k| p.eval(-1.0 + 2.0 * k as f64 / ARC_SAMPLES as f64).0[0])
-                    .fold(f64::INFINITY, f64::min),
+                Piece::Arc {
+                    centre,
+                    radius,
+                    theta0,
+                    theta1,
+                } => {
+                    let ends = (centre[0] + radius * theta0.cos()).min(centre[0] + radius * theta1.cos());
+                    // the arc passes θ = π (mod 2π), where x is least, if some π + 2kπ lies between its ends
+                    let (lo, hi) = (theta0.min(*theta1), theta0.max(*theta1));
+                    let k = ((lo - PI) / (2.0 * PI)).ceil();
+                    let passes = PI + 2.0 * PI * k <= hi;
+                    if passes {
+                        centre[0] - radius
+                    } else {
+                        ends
+                    }
+                }
             })
             .fold(f64::INFINITY, f64::min),
     }
@@ -99,6 +111,24 @@ mod tests {
         // the sphere's section moved off the axis: a ring whose radius grows is axisymmetric
         let arc = "rigid.sphere.arc={ centre = [2.0, 1.0], radius = 1.0, from_deg = -100.0, to_deg = -60.0 }";
         built(&[arc, "rigid.sphere.move.x=0.01", "rigid.sphere.move.y=0.0"]).expect("a radial ring motion");
+    }
+
+    #[test]
+    fn the_least_x_of_an_arc_is_exact() {
+        use crate::model::{Piece, RigidShape};
+        let arc = |theta0: f64, theta1: f64| RigidShape::Surface {
+            pieces: vec![Piece::Arc {
+                centre: [2.0, 0.0],
+                radius: 1.0,
+                theta0,
+                theta1,
+            }],
+        };
+        let d = std::f64::consts::PI / 180.0;
+        assert!((super::least_x(&arc(-100.0 * d, -60.0 * d)) - (2.0 + (100.0 * d).cos())).abs() < 1e-15);
+        assert_eq!(super::least_x(&arc(90.0 * d, 270.0 * d)), 1.0, "through θ = π");
+        assert_eq!(super::least_x(&arc(-200.0 * d, -150.0 * d)), 1.0, "through θ = −π");
+        assert!((super::least_x(&arc(30.0 * d, 60.0 * d)) - (2.0 + (60.0 * d).cos())).abs() < 1e-15);
     }
 
     #[test]

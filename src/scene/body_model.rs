@@ -150,7 +150,7 @@ pub(super) fn fix_axis(cx: &Ctx, m: &mut Model, end: f64) -> Result<(), SceneErr
                 return Err(refuse("has a skew support"));
             }
             match m.prescribed.iter().find(|p| p.dof == 2 * n) {
-                Some(p) if p.ramp.knots.iter().all(|k| k.1 == 0.0) => kept += 1,
+                Some(p) if p.ramp.is_zero() => kept += 1,
                 Some(_) => return Err(refuse("its x displacement is prescribed to a non-zero value")),
                 None => {
                     m.prescribed.push(Prescribed {

@@ -61,10 +61,6 @@ pub fn plane_advice(m: &Model<Solid>) -> Option<PlaneAdvice> {
     (0..3).find_map(|k| advice_along(m, k))
 }
 
-fn zero(r: &Ramp) -> bool {
-    r.knots.iter().all(|(_, v)| *v == 0.0)
-}
-
 fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
     let n = m.nodes.len();
     if n == 0 {
@@ -98,7 +94,7 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
     if first.len() < 2 || !columns.values().all(|c| levels(c) == first) {
         return None;
     }
-    if !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !zero(&l.ramp)) {
+    if !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !l.ramp.is_zero()) {
         return None;
     }
     // per node and component: the prescribed ramp (`None` free), then the loads
@@ -123,7 +119,7 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
         (z - lo).abs() <= tol || (z - hi).abs() <= tol
     };
     let held_k: Vec<usize> = (0..n).filter(|&i| held[i][k].is_some()).collect();
-    if held_k.iter().any(|&i| !zero(held[i][k].unwrap())) {
+    if held_k.iter().any(|&i| !held[i][k].unwrap().is_zero()) {
         return None;
     }
     let ends: Vec<usize> = (0..n).filter(|&i| at_end(i)).collect();
@@ -157,7 +153,7 @@ fn rigid_surfaces_extruded(m: &Model<Solid>, k: usize) -> bool {
                 RigidSurfaceShape::Plane { normal, .. } => normal[k] == 0.0,
                 RigidSurfaceShape::Sphere { .. } => false,
             };
-            shape && zero(&r.motion[k])
+            shape && r.motion[k].is_zero()
         }
     })
 }

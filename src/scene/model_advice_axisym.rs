@@ -39,10 +39,6 @@ impl AxisymmetricAdvice {
     }
 }
 
-fn zero(r: &Ramp) -> bool {
-    r.knots.iter().all(|(_, v)| *v == 0.0)
-}
-
 /// The axisymmetric model a 3D quarter model would do with, if any (see the module).
 pub fn axisymmetric_advice(m: &Model<Solid>) -> Option<AxisymmetricAdvice> {
     let size = m.nodes.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
@@ -90,7 +86,7 @@ fn symmetry_holds_only(m: &Model<Solid>, tol: f64) -> bool {
     for p in &m.prescribed {
         let (node, c) = (p.dof / 3, p.dof % 3);
         if c < 2 {
-            if !zero(&p.ramp) || m.nodes[node][c].abs() > tol {
+            if !p.ramp.is_zero() || m.nodes[node][c].abs() > tol {
                 return false;
             }
             held[c].insert(node);
@@ -104,7 +100,7 @@ fn symmetry_holds_only(m: &Model<Solid>, tol: f64) -> bool {
 
 /// Loads along `z` only; rigid planes normal to `z`, spheres on the axis, motions along `z`.
 fn axisymmetric_actions(m: &Model<Solid>) -> bool {
-    let loads = m.loads.iter().all(|l| l.dof % 3 == 2 || zero(&l.ramp));
+    let loads = m.loads.iter().all(|l| l.dof % 3 == 2 || l.ramp.is_zero());
     let rigid = m.surface_contacts.iter().all(|pair| match &pair.master {
         SurfaceMaster::Facets { .. } => false,
         SurfaceMaster::Rigid(r) => {
@@ -112,7 +108,7 @@ fn axisymmetric_actions(m: &Model<Solid>) -> bool {
                 RigidSurfaceShape::Plane { normal, .. } => normal[0] == 0.0 && normal[1] == 0.0,
                 RigidSurfaceShape::Sphere { centre, .. } => centre[0] == 0.0 && centre[1] == 0.0,
             };
-            on_axis && zero(&r.motion[0]) && zero(&r.motion[1])
+            on_axis && r.motion[0].is_zero() && r.motion[1].is_zero()
         }
     });
     loads && rigid
