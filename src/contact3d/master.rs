@@ -7,7 +7,8 @@
 //! gaps and convective coordinates are differences of nearby points, computed from the same
 //! digits wherever the model sits.
 
-use super::point::{History, PointEval, PointProblem, DOFS};
+use super::decision::{self, SurfaceRule};
+use super::point::{History, PointEval, PointProblem, SurfaceLinearization, DOFS, TOUCH};
 use super::projection::{Location, Projection, ProjectionError};
 use super::surface::FacetPoint;
 use super::vec3::{add, cross, dot, norm, scale, sub};
@@ -39,17 +40,55 @@ pub fn plane_axes(n: [f64; 3]) -> [[f64; 3]; 2] {
     [e1, cross(n, e1)]
 }
 
-/// Residual `r` (3 DOFs of the slave) and tangent `k` (3×3) of a slave at `x` (about its
-/// origin) against the rigid sphere `centre` (about the origin, moved), `radius`:
-/// `ζ = |x − c| − R`, `n = (x − c)/|x − c|`, `N = ε_N ⟨−ζ⟩`, `r = −N n`,
-/// `k = ε_N n nᵀ − N (I − n nᵀ)/|x − c|` while closed (both zero when open). Frictionless.
+/// The local arrays of one point as the system assembles them: `len` DOFs (15 for a slave
+/// and a deformable facet, 3 for a slave against a rigid surface), the penalty residual `r`,
+/// the force unknowns' residual `r_eq`, the condensed tangent `k` (row-major, `len × len`)
+/// and the linearised penalty forces (gradients in their first `len` entries); see
+/// [`PointProblem::local`].
+#[derive(Debug, Clone, Copy)]
+pub struct PointLocal {
+    pub len: usize,
+    pub r: [f64; DOFS],
+    pub r_eq: [f64; DOFS],
+    pub k: [f64; DOFS * DOFS],
+    pub lin: SurfaceLinearization,
+}
+
+impl Default for PointLocal {
+    fn default() -> Self {
+        PointLocal {
+            len: 0,
+            r: [0.0; DOFS],
+            r_eq: [0.0; DOFS],
+            k: [0.0; DOFS * DOFS],
+            lin: SurfaceLinearization::default(),
+        }
+    }
+}
+
+impl PointLocal {
+    /// Keep the slave's 3 DOFs of a 15-DOF point (a rigid facet: nodes 1–4 do not move).
+    pub fn keep_slave(&mut self) {
+        for i in 0..3 {
+            for j in 0..3 {
+                self.k[3 * i + j] = self.k[DOFS * i + j];
+            }
+        }
+        self.len = 3;
+    }
+}
+
+/// A slave at `x` (about its origin) against the rigid sphere `centre` (about the origin,
+/// moved), `radius`, frictionless, its state decided by `rule` ([`super::decision`]; `warm`:
+/// by the force unknowns alone): `ζ = |x − c| − R`, `n = (x − c)/|x − c|`, `N_ε = −ε_N ζ`,
+/// `r = −N_ε n` while closed, `r_eq = −N̄ n` with the normal force unknown `N̄`, and
+/// `k = ε_N n nᵀ − N̄ (I − n nᵀ)/|x − c|` (3 DOFs; `r`, `k` zero when open).
 pub fn sphere_point(
     law: &ContactLaw,
     x: [f64; 3],
-    centre: [f64; 3],
-    radius: f64,
-    r: &mut [f64; 3],
-    k: &mut [f64; 9],
+    (centre, radius): ([f64; 3], f64),
+    (rule, warm): (SurfaceRule, bool),
+    out: &mut PointLocal,
 ) -> PointEval<f64> {
     let d = sub(x, centre);
     let dist = norm(d);
@@ -66,16 +105,26 @@ pub fn sphere_point(
         normal: n,
         curvature: [[0.0; 2]; 2],
     };
-    let closed = gap <= super::point::TOUCH * radius;
-    let normal_force = if closed { -law.eps_n * gap } else { 0.0 };
-    r.fill(0.0);
-    k.fill(0.0);
+    let n_eps = -law.eps_n * gap;
+    let deciding = if warm { rule.deciding_by_forces() } else { rule };
+    let (closed, n_hat) = decision::normal(&deciding, n_eps, law.eps_n * TOUCH * radius);
+    let state = if closed { ContactState::Slip } else { ContactState::Open };
+    let n_bar = rule.forces().map_or(n_eps, |f| f.normal);
+    *out = PointLocal {
+        len: 3,
+        ..PointLocal::default()
+    };
+    for (r, n) in out.r_eq.iter_mut().zip(n) {
+        *r = -n_bar * n;
+    }
     if closed {
+        out.lin.normal = n_eps;
         for i in 0..3 {
-            r[i] = -normal_force * n[i];
+            out.r[i] = -n_eps * n[i];
+            out.lin.d_normal[i] = -law.eps_n * n[i];
             for j in 0..3 {
                 let delta = if i == j { 1.0 } else { 0.0 };
-                k[3 * i + j] = law.eps_n * n[i] * n[j] - normal_force * (delta - n[i] * n[j]) / dist;
+                out.k[3 * i + j] = law.eps_n * n[i] * n[j] - n_bar * (delta - n[i] * n[j]) / dist;
             }
         }
     }
@@ -86,37 +135,30 @@ pub fn sphere_point(
             location: Location::Inside,
             iterations: 0,
         },
-        normal_force,
+        normal_force: if closed { n_eps } else { 0.0 },
         trial: [0.0; 2],
         traction: [0.0; 2],
-        state: if closed { ContactState::Slip } else { ContactState::Open },
-    }
-}
-
-/// The slave's 3×3 block of a 15-DOF point tangent and its 3 residual entries (a rigid
-/// facet: nodes 1–4 do not move).
-pub fn slave_block(r: &[f64; DOFS], k: &[f64; DOFS * DOFS], rs: &mut [f64; 3], ks: &mut [f64; 9]) {
-    for i in 0..3 {
-        rs[i] = r[i];
-        for j in 0..3 {
-            ks[3 * i + j] = k[DOFS * i + j];
-        }
+        state,
+        complementarity: decision::complementarity(&rule, state, (n_eps, n_hat), None, None),
     }
 }
 
 /// Evaluate the facet kernel: slave `x_s` and facet corners `facet` (about the slave's
-/// origin), the history transferred to this facet.
+/// origin), the history transferred to this facet, the state decided by `rule` (`warm`: by
+/// the force unknowns alone); the local arrays into `out` (15 DOFs).
 pub fn facet_point(
     law: ContactLaw,
-    x_s: [f64; 3],
-    facet: [[f64; 3]; 4],
+    (x_s, facet): ([f64; 3], [[f64; 3]; 4]),
     history: Option<History>,
-    r: &mut [f64; DOFS],
-    k: &mut [f64; DOFS * DOFS],
+    (rule, warm): (SurfaceRule, bool),
+    out: &mut PointLocal,
 ) -> Result<PointEval<f64>, ProjectionError> {
     let mut problem = PointProblem::new(law, [x_s, facet[0], facet[1], facet[2], facet[3]]);
     problem.history = history;
-    problem.residual_tangent(r, k)
+    problem.rule = rule;
+    problem.warm = warm;
+    out.len = DOFS;
+    problem.local(&mut out.r, &mut out.r_eq, &mut out.k, &mut out.lin)
 }
 
 #[cfg(test)]
@@ -133,20 +175,22 @@ mod tests {
         };
         let c = [0.1, -0.2, 1.0];
         let x = [0.05, 0.02, 0.05];
-        let (mut r, mut k) = ([0.0; 3], [0.0; 9]);
-        let e = sphere_point(&law, x, c, 1.0, &mut r, &mut k);
+        let penalty = (SurfaceRule::Penalty, false);
+        let mut out = PointLocal::default();
+        let e = sphere_point(&law, x, (c, 1.0), penalty, &mut out);
         assert_eq!(e.state, ContactState::Slip);
+        let (r, k) = (out.r, out.k);
         let h = 1e-7;
         for j in 0..3 {
-            let (mut rp, mut rm, mut kk) = ([0.0; 3], [0.0; 3], [0.0; 9]);
+            let (mut op, mut om) = (PointLocal::default(), PointLocal::default());
             let mut xp = x;
             xp[j] += h;
-            sphere_point(&law, xp, c, 1.0, &mut rp, &mut kk);
+            sphere_point(&law, xp, (c, 1.0), penalty, &mut op);
             let mut xm = x;
             xm[j] -= h;
-            sphere_point(&law, xm, c, 1.0, &mut rm, &mut kk);
+            sphere_point(&law, xm, (c, 1.0), penalty, &mut om);
             for i in 0..3 {
-                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                let fd = (op.r[i] - om.r[i]) / (2.0 * h);
                 assert!(
                     (fd - k[3 * i + j]).abs() <= 1e-6 * law.eps_n,
                     "k[{i}{j}] {} vs {fd}",
@@ -155,8 +199,8 @@ mod tests {
             }
         }
         // the force on the slave points out of the sphere
-        let out = sub(x, c);
-        assert!(dot(scale(r, -1.0), out) > 0.0);
+        let outward = sub(x, c);
+        assert!(dot(scale([r[0], r[1], r[2]], -1.0), outward) > 0.0);
     }
 
     #[test]
@@ -167,13 +211,13 @@ mod tests {
         for (got, want) in p.normal.iter().zip(n) {
             assert!((got - want).abs() < 1e-14);
         }
-        let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
         let law = ContactLaw {
             eps_n: 1.0,
             eps_t: 0.0,
             mu: 0.0,
         };
-        let e = facet_point(law, [0.2, 0.1, 0.3], f, None, &mut r, &mut k).unwrap();
+        let mut out = PointLocal::default();
+        let e = facet_point(law, ([0.2, 0.1, 0.3], f), None, (SurfaceRule::Penalty, false), &mut out).unwrap();
         assert_eq!(e.projection.location, Location::Inside);
         // the offset moved the plane by 0.5 along z: gap = (x − c)·n
         let gap = dot(sub([0.2, 0.1, 0.3], [0.0, 0.0, 0.5]), n);

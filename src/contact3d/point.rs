@@ -29,8 +29,9 @@
 //! `−r_s = N n + T_α ∇_s ξ^α` (`= N n + T_α ρ^α` on a flat facet): `T` acts on the slave.
 //! The history is data (not differentiated).
 
+use super::decision::{self, SurfaceRule};
 use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
-use super::surface::Facet;
+use super::surface::{Facet, FacetPoint};
 use super::vec3::{Scalar, V3};
 use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
@@ -45,10 +46,6 @@ use num_dual::{Dual2SVec64, DualSVec64};
 /// the coordinates, which are about the slave's origin and of the facet's size); the normal
 /// force at such a gap is below `ε_N 1e-12 · size`.
 pub const TOUCH: f64 = 1e-12;
-
-fn projection_gap_re<S: Scalar>(e: &PointEval<S>) -> f64 {
-    e.projection.gap.re()
-}
 
 /// Nodes of one point: the slave and the facet's four.
 pub const NODES: usize = 5;
@@ -76,6 +73,12 @@ pub struct PointProblem {
     /// Newton's settings of the projection (its start is replaced by `ξ_(n)` when there is
     /// a history).
     pub projection: ProjectionOptions,
+    /// Who decides the state: the penalty function alone, or the augmented force unknowns
+    /// of Newton's iterate ([`super::decision`]).
+    pub rule: SurfaceRule,
+    /// The state is decided by the force unknowns alone ([`SurfaceRule::deciding_by_forces`]:
+    /// the first iterate of an attempt); the complementarity residuals keep the rule's weights.
+    pub warm: bool,
 }
 
 /// One evaluation in scalar type `S`.
@@ -89,6 +92,20 @@ pub struct PointEval<S: Scalar> {
     /// `T_α` after the return map.
     pub traction: [S; 2],
     pub state: ContactState,
+    /// The complementarity residuals `[C_N, |C_T|]` of the rule at this state (zero under
+    /// [`SurfaceRule::Penalty`]; see [`decision::complementarity`]).
+    pub complementarity: [f64; 2],
+}
+
+/// What Newton's update of the force unknowns needs of a closed point: the penalty forces
+/// in the decided state — `N_ε` and the tangential force on the slave as a spatial vector,
+/// `T_α ρ^α` — and their gradients with respect to the 15 local DOFs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SurfaceLinearization {
+    pub normal: f64,
+    pub d_normal: [f64; DOFS],
+    pub tangential: [f64; 3],
+    pub d_tangential: [[f64; DOFS]; 3],
 }
 
 impl PointProblem {
@@ -99,10 +116,13 @@ impl PointProblem {
             x,
             history: None,
             projection: ProjectionOptions::default(),
+            rule: SurfaceRule::Penalty,
+            warm: false,
         }
     }
 
-    /// Projection, normal force, trial and returned traction for node positions `q`.
+    /// Projection, normal force, trial and returned traction for node positions `q`, the
+    /// state decided by [`Self::rule`] ([`super::decision`]).
     pub fn evaluate<S: Scalar>(&self, q: &[V3<S>; NODES]) -> Result<PointEval<S>, ProjectionError> {
         let facet = Facet {
             x: [q[1], q[2], q[3], q[4]],
@@ -113,28 +133,39 @@ impl PointProblem {
         }
         let projection = project_with(&facet, q[0], &opts)?;
         let zero = S::from(0.0);
-        let normal = projection.gap * (-self.law.eps_n);
+        let n_eps = projection.gap * (-self.law.eps_n);
         let mut eval = PointEval {
             projection,
             normal_force: zero,
             trial: [zero; 2],
             traction: [zero; 2],
             state: ContactState::Open,
+            complementarity: [0.0; 2],
+        };
+        let deciding = if self.warm {
+            self.rule.deciding_by_forces()
+        } else {
+            self.rule
         };
         // touching within the geometry's precision counts as closed (the resting side of
         // the normal kink): a point at zero gap then carries the penalty's stiffness into
         // the correction, and a correction that lifts it opens it at the next iterate
-        if projection_gap_re(&eval) > TOUCH * facet.size() {
+        let touch = self.law.eps_n * TOUCH * facet.size();
+        let (closed, n_hat) = decision::normal(&deciding, n_eps.re(), touch);
+        let forces = (n_eps.re(), n_hat);
+        if !closed {
+            eval.complementarity = decision::complementarity(&self.rule, ContactState::Open, forces, None, None);
             return Ok(eval);
         }
-        eval.normal_force = normal;
-        let history = self.history.filter(|_| self.law.mu > 0.0);
-        let Some(h) = history else {
-            eval.state = if self.law.mu > 0.0 {
+        eval.normal_force = n_eps;
+        let mu = self.law.mu;
+        let Some(h) = self.history.filter(|_| mu > 0.0) else {
+            eval.state = if mu > 0.0 {
                 ContactState::Stick
             } else {
                 ContactState::Slip
             };
+            eval.complementarity = decision::complementarity(&self.rule, eval.state, forces, None, None);
             return Ok(eval);
         };
         let p = &eval.projection.point;
@@ -144,15 +175,29 @@ impl PointProblem {
             S::from(h.traction[0]) - slip[0] * eps_t,
             S::from(h.traction[1]) - slip[1] * eps_t,
         ];
-        let norm = p.norm(trial);
+        let p_re = real_point(p);
+        let trial_re = trial.map(|v| v.re());
         eval.trial = trial;
-        if norm.re() <= self.law.mu * normal.re() {
-            eval.traction = trial;
-            eval.state = ContactState::Stick;
-        } else {
-            let factor = normal * self.law.mu / norm;
-            eval.traction = [trial[0] * factor, trial[1] * factor];
-            eval.state = ContactState::Slip;
+        match decision::tangential(&deciding, mu, trial_re, &p_re, forces) {
+            None => {
+                eval.traction = trial;
+                eval.state = ContactState::Stick;
+                let trial_vector = Some(p_re.vector(trial_re));
+                eval.complementarity = decision::complementarity(&self.rule, eval.state, forces, trial_vector, None);
+            }
+            Some(slip) => {
+                // the slip force of the condensed semismooth Newton (module docs of
+                // `decision`): `μ N_ε d + c P T^tr`, the seed's return map at a solution
+                let d = p_re.vector(slip.direction);
+                let c = decision::transverse_factor(&deciding, mu, n_hat, slip.size);
+                let tv = p.vector(trial);
+                let along = tv[0] * d[0] + tv[1] * d[1] + tv[2] * d[2];
+                let force: V3<S> = std::array::from_fn(|i| n_eps * (mu * d[i]) + (tv[i] - along * d[i]) * c);
+                eval.traction = p.covariant(force);
+                eval.state = ContactState::Slip;
+                let slip = Some((d, mu));
+                eval.complementarity = decision::complementarity(&self.rule, eval.state, forces, None, slip);
+            }
         }
         Ok(eval)
     }
@@ -181,37 +226,96 @@ impl PointProblem {
         Ok(real_parts(&e))
     }
 
-    /// Residual `r` and consistent tangent `k = ∂r/∂x` (row-major, `k[DOFS i + j]`), see the
-    /// module docs; returns the plain evaluation. Open: both zero.
+    /// Residual `r` and consistent tangent `k = ∂r/∂x` (row-major, `k[DOFS i + j]`) under the
+    /// penalty rule, see the module docs; returns the plain evaluation. Open: both zero.
     pub fn residual_tangent(
         &self,
         r: &mut [f64; DOFS],
         k: &mut [f64; DOFS * DOFS],
+    ) -> Result<PointEval<f64>, ProjectionError> {
+        let mut r_eq = [0.0; DOFS];
+        let mut lin = SurfaceLinearization::default();
+        self.local(r, &mut r_eq, k, &mut lin)
+    }
+
+    /// Everything Newton needs of this point: the residual `r = −N_ε ∇ζ − T_α ∇ξ^α` of the
+    /// penalty forces in the decided state (the condensed system's right-hand side), the
+    /// residual `r_eq = −N̄ ∇ζ − T̄_α ∇ξ^α` of the force unknowns (`T̄_α = t̄·ρ_α`; equal to `r`
+    /// under [`SurfaceRule::Penalty`]), the condensed tangent
+    /// `k = −∇ζ ∇N_εᵀ − N̄ ∇²ζ − Σ_α (∇ξ^α ∇T_αᵀ + T̄_α ∇²ξ^α + ∇ξ^α ((t̄ − t_ε)·∇ρ_α)ᵀ)` — the
+    /// penalty forces' gradients in the decided state, the geometry's Hessians weighted by
+    /// the force unknowns, and the turn of the facet's basis under the unknown's covariant
+    /// components (`t_ε = T_α ρ^α` the penalty's tangential force): the Newton matrix of the
+    /// mixed system with the unknowns condensed, as in 2D
+    /// ([`crate::contact::point::PointProblem::local`]) — and the linearisation `lin` of the
+    /// penalty forces. An open point: `r`, `k` and `lin` zero (its unknowns go to zero in
+    /// one correction), `r_eq` the unknowns' force.
+    pub fn local(
+        &self,
+        r: &mut [f64; DOFS],
+        r_eq: &mut [f64; DOFS],
+        k: &mut [f64; DOFS * DOFS],
+        lin: &mut SurfaceLinearization,
     ) -> Result<PointEval<f64>, ProjectionError> {
         type D = Dual2SVec64<DOFS>;
         let q: [V3<D>; NODES] =
             std::array::from_fn(|i| std::array::from_fn(|c| D::from_re(self.x[i][c]).derivative(3 * i + c)));
         let e = self.evaluate(&q)?;
         r.fill(0.0);
+        r_eq.fill(0.0);
         k.fill(0.0);
-        if e.state != ContactState::Open {
-            let grad = |s: &D| s.v1.unwrap_generic(U1, Const::<DOFS>);
-            let hess = |s: &D| s.v2.unwrap_generic(Const::<DOFS>, Const::<DOFS>);
-            let (zeta, xi) = (&e.projection.gap, &e.projection.point.xi);
-            let (gz, hz) = (grad(zeta), hess(zeta));
-            let gx = [grad(&xi[0]), grad(&xi[1])];
-            let hx = [hess(&xi[0]), hess(&xi[1])];
-            let gn = grad(&e.normal_force);
-            let gt = [grad(&e.traction[0]), grad(&e.traction[1])];
-            let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
-            for i in 0..DOFS {
-                r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
-                for j in 0..DOFS {
-                    k[DOFS * i + j] = -gz[i] * gn[j]
-                        - n * hz[(i, j)]
-                        - (gx[0][i] * gt[0][j] + t[0] * hx[0][(i, j)])
-                        - (gx[1][i] * gt[1][j] + t[1] * hx[1][(i, j)]);
+        *lin = SurfaceLinearization::default();
+        let grad = |s: &D| s.v1.unwrap_generic(U1, Const::<DOFS>);
+        let hess = |s: &D| s.v2.unwrap_generic(Const::<DOFS>, Const::<DOFS>);
+        let (zeta, xi) = (&e.projection.gap, &e.projection.point.xi);
+        let gz = grad(zeta);
+        let gx = [grad(&xi[0]), grad(&xi[1])];
+        let (n_bar, t_bar) = match self.rule.forces() {
+            Some(f) => (f.normal, real_point(&e.projection.point).covariant(f.tangential)),
+            None => (e.normal_force.re, e.traction.map(|v| v.re)),
+        };
+        for i in 0..DOFS {
+            r_eq[i] = -n_bar * gz[i] - t_bar[0] * gx[0][i] - t_bar[1] * gx[1][i];
+        }
+        if e.state == ContactState::Open {
+            // the unknowns of an open point go to zero in one correction; their geometric
+            // terms are left out of the Newton matrix, as in 2D
+            return Ok(real_parts(&e));
+        }
+        let hz = hess(zeta);
+        let hx = [hess(&xi[0]), hess(&xi[1])];
+        let gn = grad(&e.normal_force);
+        let gt = [grad(&e.traction[0]), grad(&e.traction[1])];
+        let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
+        for i in 0..DOFS {
+            r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
+            for j in 0..DOFS {
+                k[DOFS * i + j] = -gz[i] * gn[j]
+                    - n_bar * hz[(i, j)]
+                    - (gx[0][i] * gt[0][j] + t_bar[0] * hx[0][(i, j)])
+                    - (gx[1][i] * gt[1][j] + t_bar[1] * hx[1][(i, j)]);
+            }
+        }
+        let tangential = e.projection.point.vector(e.traction);
+        if let Some(f) = self.rule.forces() {
+            // the unknowns' covariant components `t̄·ρ_α` turn with the facet's basis while
+            // the penalty force's are those of its own vector: `−∇ξ^α ⊗ ∇ρ_α·(t̄ − t_ε)`
+            let excess: [f64; 3] = std::array::from_fn(|c| f.tangential[c] - tangential[c].re);
+            for (alpha, rho) in e.projection.point.tangents.iter().enumerate() {
+                let turned = grad(&(rho[0] * excess[0] + rho[1] * excess[1] + rho[2] * excess[2]));
+                for i in 0..DOFS {
+                    for j in 0..DOFS {
+                        k[DOFS * i + j] -= gx[alpha][i] * turned[j];
+                    }
                 }
+            }
+        }
+        lin.normal = n;
+        lin.tangential = tangential.map(|c| c.re);
+        for j in 0..DOFS {
+            lin.d_normal[j] = gn[j];
+            for (c, v) in tangential.iter().enumerate() {
+                lin.d_tangential[c][j] = grad(v)[j];
             }
         }
         Ok(real_parts(&e))
@@ -229,20 +333,9 @@ impl PointProblem {
 
 /// The real parts of a dual evaluation.
 fn real_parts<S: Scalar>(e: &PointEval<S>) -> PointEval<f64> {
-    let p = &e.projection.point;
-    let m = |a: [[S; 2]; 2]| a.map(|row| row.map(|v| v.re()));
-    let v = |a: V3<S>| a.map(|c| c.re());
     PointEval {
         projection: Projection {
-            point: super::surface::FacetPoint {
-                xi: p.xi.map(|c| c.re()),
-                rho: v(p.rho),
-                tangents: p.tangents.map(v),
-                metric: m(p.metric),
-                inverse: m(p.inverse),
-                normal: v(p.normal),
-                curvature: m(p.curvature),
-            },
+            point: real_point(&e.projection.point),
             gap: e.projection.gap.re(),
             location: e.projection.location,
             iterations: e.projection.iterations,
@@ -251,5 +344,21 @@ fn real_parts<S: Scalar>(e: &PointEval<S>) -> PointEval<f64> {
         trial: e.trial.map(|c| c.re()),
         traction: e.traction.map(|c| c.re()),
         state: e.state,
+        complementarity: e.complementarity,
+    }
+}
+
+/// The real parts of a contact point in dual numbers.
+fn real_point<S: Scalar>(p: &FacetPoint<S>) -> FacetPoint<f64> {
+    let m = |a: [[S; 2]; 2]| a.map(|row| row.map(|v| v.re()));
+    let v = |a: V3<S>| a.map(|c| c.re());
+    FacetPoint {
+        xi: p.xi.map(|c| c.re()),
+        rho: v(p.rho),
+        tangents: p.tangents.map(v),
+        metric: m(p.metric),
+        inverse: m(p.inverse),
+        normal: v(p.normal),
+        curvature: m(p.curvature),
     }
 }

@@ -7,12 +7,12 @@ use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
 
 /// A history that leaves the points of [`problem`] sticking (`‖T^tr‖ ≈ 0.4 μN`).
-const STICK: History = History {
+pub(super) const STICK: History = History {
     xi: [0.199, -0.301],
     traction: [0.5, -0.3],
 };
 
-const LAW: ContactLaw = ContactLaw {
+pub(super) const LAW: ContactLaw = ContactLaw {
     eps_n: 2.1e3,
     eps_t: 1.7e3,
     mu: 0.3,
@@ -25,7 +25,7 @@ const PARALLELOGRAM: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.2, 0.1, 0.0], [1.3, 1.
 
 /// Slave above point `ξ = (0.2, −0.3)` of a flat facet ([`FLAT`]) or of the warped one, at
 /// normal offset `d` (negative: penetrating).
-fn problem(warped: bool, d: f64, history: Option<History>, law: ContactLaw) -> PointProblem {
+pub(super) fn problem(warped: bool, d: f64, history: Option<History>, law: ContactLaw) -> PointProblem {
     on(
         if warped {
             super::projection_tests::warped().x

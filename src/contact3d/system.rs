@@ -5,21 +5,22 @@
 //! evaluates the point kernels ([`super::master`]) and hands their local residuals and
 //! tangents to the caller's assembler by global DOF — as the 2D system does.
 //!
-//! Enforcement: the seed's penalty law, each point's state decided by its own trial
-//! (closed while `ε_N ⟨−ζ⟩ > 0`, stick while the trial traction is inside Coulomb's cone):
-//! the 3D points have no force unknowns of Newton's iterate yet (the 2D semismooth rule of
-//! `contact::decision` is not carried over), so the complementarity residuals are zero and
-//! Newton's merit is the equilibrium residual.
+//! Enforcement: the seed's penalty law with the contact Newton of 2D: each point's normal
+//! force and tangential force are unknowns of Newton's iterate, its state decided by their
+//! Alart–Curnier functions with the pair's weights ([`super::decision`],
+//! [`super::unknowns`]); the complementarity residuals enter Newton's merit.
 
-use super::master::{facet_point, plane_facet, slave_block, sphere_point};
-use super::point::{History, PointEval, DOFS};
+use super::decision::{SurfaceForces, SurfaceRule};
+use super::evaluate::{evaluate_point, is_closed};
+use super::master::PointLocal;
+use super::point::{History, PointEval};
 use super::projection::{project, INSIDE_TOLERANCE};
-use super::search::{bounding_box, free_borders, past_free_border, FacetGrid, FREE_BORDER_HOLD};
+use super::search::{bounding_box, free_borders, FacetGrid};
 use super::surface::Facet;
-use super::transfer::transfer;
+use super::unknowns::PointLinearization;
 use crate::contact::law::ContactState;
 use crate::contact::system::{Decision, LocalSink};
-use crate::model::{Model, RigidSurfaceShape, Solid, SurfaceMaster, SurfacePair};
+use crate::model::{Model, Solid, SurfaceMaster, SurfacePair};
 
 /// Node positions and time the 3D contact evaluation works on.
 pub struct SurfaceConfig<'a> {
@@ -37,12 +38,12 @@ impl SurfaceConfig<'_> {
     }
 
     /// Current position of node `n` about `origin` (reference difference first).
-    fn node_about(&self, n: usize, origin: [f64; 3]) -> [f64; 3] {
+    pub(super) fn node_about(&self, n: usize, origin: [f64; 3]) -> [f64; 3] {
         let x = self.model.nodes[n];
         std::array::from_fn(|c| (x[c] - origin[c]) + self.u[3 * n + c])
     }
 
-    fn facet_about(&self, nodes: &[usize; 4], origin: [f64; 3]) -> [[f64; 3]; 4] {
+    pub(super) fn facet_about(&self, nodes: &[usize; 4], origin: [f64; 3]) -> [[f64; 3]; 4] {
         nodes.map(|n| self.node_about(n, origin))
     }
 }
@@ -56,6 +57,9 @@ pub struct SurfaceHistory {
     pub closed: bool,
     /// `(ξ, T_α)` on `facet` of a closed point.
     pub history: Option<History>,
+    /// The converged contact forces (`N`, `T_α ρ^α`), from which the force unknowns of the
+    /// next increment start.
+    pub forces: SurfaceForces,
 }
 
 /// A point's evaluation at the current iterate.
@@ -63,8 +67,10 @@ pub struct SurfaceHistory {
 pub struct SurfaceNow {
     pub facet: Option<usize>,
     pub eval: Option<PointEval<f64>>,
-    /// The contact force on the slave node as assembled (`−r_s`).
+    /// The contact force on the slave node as assembled (`−r_s` of the force unknowns).
     pub force: [f64; 3],
+    /// A closed point's linearised penalty forces (Newton's update of its force unknowns).
+    pub linearization: Option<PointLinearization>,
     /// The friction history could not be carried onto this facet from the last converged
     /// one ([`super::transfer::TransferError`]: the facets folded onto each other, or the old
     /// point not found on the new facet): the point starts it afresh, as a point closing now.
@@ -113,8 +119,19 @@ pub struct SurfaceSystem {
     grids: Vec<Option<FacetGrid>>,
     /// Per pair with a facet master, its facets' free border edges ([`free_borders`]).
     borders: Vec<Vec<[bool; 4]>>,
-    /// Half-width of a rigid plane's fixed facet ([`plane_facet`]).
+    /// Half-width of a rigid plane's fixed facet ([`super::master::plane_facet`]).
     plane_half: f64,
+    /// The force unknowns of every point at the iterate, at the iterate a correction
+    /// started from, and at the full correction.
+    pub(super) forces: Vec<Vec<SurfaceForces>>,
+    pub(super) forces_base: Vec<Vec<SurfaceForces>>,
+    pub(super) forces_step: Vec<Vec<SurfaceForces>>,
+    /// Per pair, the weights `(ρ_N, ρ_T)` of the augmented forces (1: the penalty rule).
+    pub(super) weights: Vec<(f64, f64)>,
+    /// Decide by the force unknowns alone (the first iterate of an attempt).
+    pub(super) warm: bool,
+    /// `Σ C²` of the complementarity residuals at the last evaluation.
+    pub(super) complementarity2: f64,
 }
 
 impl SurfaceSystem {
@@ -124,6 +141,7 @@ impl SurfaceSystem {
             return SurfaceSystem::default();
         };
         let per_point = |p: &SurfacePair| vec![SurfaceNow::default(); p.slaves.len()];
+        let per_pair_forces = |p: &SurfacePair| vec![SurfaceForces::default(); p.slaves.len()];
         let travel = (model.surface_contacts.iter())
             .filter_map(|p| match &p.master {
                 SurfaceMaster::Rigid(r) => Some(
@@ -149,6 +167,12 @@ impl SurfaceSystem {
                 })
                 .collect(),
             plane_half: 4.0 * (model.size() + travel),
+            forces: model.surface_contacts.iter().map(per_pair_forces).collect(),
+            forces_base: model.surface_contacts.iter().map(per_pair_forces).collect(),
+            forces_step: model.surface_contacts.iter().map(per_pair_forces).collect(),
+            weights: vec![(1.0, 1.0); model.surface_contacts.len()],
+            warm: false,
+            complementarity2: 0.0,
         }
     }
 
@@ -173,19 +197,24 @@ impl SurfaceSystem {
     }
 
     /// Forget the current iterate (a new attempt at an increment): the search grids are
-    /// rebuilt at its first evaluation.
+    /// rebuilt at its first evaluation, the force unknowns start from the converged forces.
     pub fn reset_current(&mut self) {
         self.current
             .iter_mut()
             .flatten()
             .for_each(|p| *p = SurfaceNow::default());
         self.grids.iter_mut().for_each(|g| *g = None);
+        self.warm = false;
+        self.reset_forces();
     }
 
-    /// Keep the current evaluation (the start of a correction).
+    /// Keep the current evaluation and force unknowns (the start of a correction).
     pub fn save_iterate(&mut self) {
         for (b, c) in self.base.iter_mut().zip(&self.current) {
             b.copy_from_slice(c);
+        }
+        for (b, f) in self.forces_base.iter_mut().zip(&self.forces) {
+            b.copy_from_slice(f);
         }
     }
 
@@ -204,22 +233,64 @@ impl SurfaceSystem {
         for (t, f) in self.base.iter_mut().zip(&other.base) {
             t.copy_from_slice(f);
         }
+        let copy_all = |to: &mut [Vec<SurfaceForces>], from: &[Vec<SurfaceForces>]| {
+            to.iter_mut().zip(from).for_each(|(t, f)| t.copy_from_slice(f));
+        };
+        copy_all(&mut self.forces, &other.forces);
+        copy_all(&mut self.forces_base, &other.forces_base);
+        copy_all(&mut self.forces_step, &other.forces_step);
+        self.warm = other.warm;
+        self.complementarity2 = other.complementarity2;
     }
 
-    /// Pair and evaluate every slave point; hand each closed point's residual and tangent to
-    /// `assemble` (its global DOFs, `r`, `r` again as the force residual — penalty points
-    /// have no force unknowns — `k`, and the round-off weights of its coordinates).
+    /// Pair and evaluate every slave point, its state decided by the augmented forces of its
+    /// unknowns; hand each point that carries a force, penalty or unknown, to `assemble`
+    /// (its global DOFs, the penalty residual `r`, the unknowns' residual `r_eq`, `k`, and
+    /// the round-off weights of its coordinates, scaled by `ρ` as in 2D).
     pub fn evaluate(&mut self, cfg: &SurfaceConfig, assemble: &mut LocalSink) {
+        self.complementarity2 = 0.0;
+        let mut local = PointLocal::default();
         for (ip, pair) in cfg.model.surface_contacts.iter().enumerate() {
             if self.grids[ip].is_none() {
                 self.grids[ip] = facet_grid(cfg, pair);
             }
+            let (rho_n, rho_t) = self.weights[ip];
             for is in 0..pair.slaves.len() {
                 let hist = self.committed[ip][is];
+                let forces = self.forces[ip][is];
+                let rule = SurfaceRule::AlartCurnier { forces, rho_n, rho_t };
                 let start = self.current[ip][is].facet.or(hist.facet);
                 let search = (self.grids[ip].as_ref(), start, self.borders[ip].as_slice());
-                let now = evaluate_point(cfg, pair, is, &hist, search, self.plane_half, assemble);
-                self.current[ip][is] = now;
+                let point = (pair, is, &hist);
+                let decider = (rule, self.warm && hist.closed);
+                let mut ev = evaluate_point(cfg, point, search, self.plane_half, decider, &mut local);
+                self.complementarity2 += match &ev.now.eval {
+                    Some(e) => e.complementarity.iter().map(|c| c * c).sum::<f64>(),
+                    // out of reach: no force can act; its unknowns go to zero
+                    None => forces.normal.powi(2) + forces.tangential.iter().map(|c| c * c).sum::<f64>(),
+                };
+                let closed = is_closed(&ev.now);
+                if ev.now.eval.is_some() && (closed || forces != SurfaceForces::default()) {
+                    let n = local.len;
+                    let rho = rho_n.max(rho_t);
+                    let weights = ev.positions.map(|x| rho * x);
+                    ev.now.force = [-local.r_eq[0], -local.r_eq[1], -local.r_eq[2]];
+                    assemble(
+                        &ev.dofs[..n],
+                        &local.r[..n],
+                        &local.r_eq[..n],
+                        &local.k[..n * n],
+                        &weights[..n],
+                    );
+                }
+                if closed {
+                    ev.now.linearization = Some(PointLinearization {
+                        dofs: ev.dofs,
+                        len: local.len,
+                        lin: local.lin,
+                    });
+                }
+                self.current[ip][is] = ev.now;
             }
         }
     }
@@ -267,6 +338,13 @@ impl SurfaceSystem {
                 facet: now.facet,
                 closed,
                 history: now.eval.as_ref().and_then(super::point::PointProblem::next_history),
+                forces: now
+                    .eval
+                    .filter(|_| closed)
+                    .map_or(SurfaceForces::default(), |e| SurfaceForces {
+                        normal: e.normal_force,
+                        tangential: e.projection.point.vector(e.traction),
+                    }),
             };
         }
         crossings
@@ -327,145 +405,6 @@ pub fn locate(
         }
     }
     best.map(|(f, _)| f)
-}
-
-/// Pair and evaluate slave `is` of `pair`; assemble it when closed.
-fn evaluate_point(
-    cfg: &SurfaceConfig,
-    pair: &SurfacePair,
-    is: usize,
-    hist: &SurfaceHistory,
-    (grid, start, borders): (Option<&FacetGrid>, Option<usize>, &[[bool; 4]]),
-    plane_half: f64,
-    assemble: &mut LocalSink,
-) -> SurfaceNow {
-    match &pair.master {
-        SurfaceMaster::Facets { facets, .. } => {
-            let grid = grid.expect("a facet master has a grid");
-            on_facets(cfg, pair, is, hist, facets, (grid, start, borders), assemble)
-        }
-        SurfaceMaster::Rigid(rigid) => on_rigid(cfg, pair, is, hist, rigid, plane_half, assemble),
-    }
-}
-
-/// Slave `is` against the facets of a deformable face: located (from `start`), its history
-/// carried onto the facet it is on now, evaluated, and assembled on its 5 nodes when closed.
-/// A point whose contact point lies past the face's free border (`borders`) is not paired
-/// ([`past_free_border`]), unless it was closed on that facet at the last converged
-/// increment and is still penetrating, within [`FREE_BORDER_HOLD`] of the border.
-fn on_facets(
-    cfg: &SurfaceConfig,
-    pair: &SurfacePair,
-    is: usize,
-    hist: &SurfaceHistory,
-    facets: &[[usize; 4]],
-    (grid, start, borders): (&FacetGrid, Option<usize>, &[[bool; 4]]),
-    assemble: &mut LocalSink,
-) -> SurfaceNow {
-    let node = pair.slaves[is];
-    let origin = cfg.model.nodes[node];
-    let mut now = SurfaceNow::default();
-    let Some(f) = locate(cfg, facets, grid, cfg.node(node), start, pair.search_radius) else {
-        return now;
-    };
-    now.facet = Some(f);
-    let facet_b = cfg.facet_about(&facets[f], origin);
-    let carried = match (hist.history.filter(|_| hist.closed), hist.facet) {
-        (Some(h), Some(a)) if a != f => {
-            let facet_a = Facet {
-                x: cfg.facet_about(&facets[a], origin),
-            };
-            let carried = transfer(pair.transfer, &facet_a, &h, &Facet { x: facet_b }).ok();
-            now.history_lost = carried.is_none();
-            now.carried = carried.map(|to| Carried {
-                from_facet: a,
-                from: h,
-                to,
-            });
-            carried
-        }
-        (h, _) => h,
-    };
-    let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
-    let x_s = cfg.node_about(node, origin);
-    let Ok(e) = facet_point(pair.law_of(is), x_s, facet_b, carried, &mut r, &mut k) else {
-        now.facet = None;
-        return now;
-    };
-    let past = past_free_border(e.projection.point.xi, borders[f]);
-    let held = hist.closed && hist.facet == Some(f) && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
-    if past > INSIDE_TOLERANCE && !held {
-        return SurfaceNow::default();
-    }
-    now.eval = Some(in_model_coordinates(e, origin));
-    if e.state != ContactState::Open {
-        let nodes = [node, facets[f][0], facets[f][1], facets[f][2], facets[f][3]];
-        let dofs: [usize; DOFS] = std::array::from_fn(|i| 3 * nodes[i / 3] + i % 3);
-        let locals = [x_s, facet_b[0], facet_b[1], facet_b[2], facet_b[3]];
-        let weights: [f64; DOFS] = std::array::from_fn(|j| locals[j / 3][j % 3].abs());
-        now.force = [-r[0], -r[1], -r[2]];
-        assemble(&dofs, &r, &r, &k, &weights);
-    }
-    now
-}
-
-/// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel)
-/// or a rigid sphere; assembled on the slave's 3 DOFs when closed.
-fn on_rigid(
-    cfg: &SurfaceConfig,
-    pair: &SurfacePair,
-    is: usize,
-    hist: &SurfaceHistory,
-    rigid: &crate::model::RigidSurface,
-    plane_half: f64,
-    assemble: &mut LocalSink,
-) -> SurfaceNow {
-    let node = pair.slaves[is];
-    let origin = cfg.model.nodes[node];
-    let x_s = cfg.node_about(node, origin);
-    let law = pair.law_of(is);
-    let mut now = SurfaceNow::default();
-    let offset = rigid.offset(cfg.t);
-    let (mut rs, mut ks) = ([0.0; 3], [0.0; 9]);
-    let (e, scale) = match rigid.shape {
-        RigidSurfaceShape::Plane { point, normal } => {
-            let facet = plane_facet(point, normal, plane_half, offset, origin);
-            let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
-            let history = hist.history.filter(|_| hist.closed);
-            let Ok(e) = facet_point(law, x_s, facet, history, &mut r, &mut k) else {
-                return now;
-            };
-            slave_block(&r, &k, &mut rs, &mut ks);
-            (e, plane_half)
-        }
-        RigidSurfaceShape::Sphere { centre, radius } => {
-            let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
-            (
-                sphere_point(&law, x_s, centre, radius, &mut rs, &mut ks),
-                crate::contact3d::vec3::norm(centre) + radius,
-            )
-        }
-    };
-    if e.projection.gap > pair.search_radius {
-        return now;
-    }
-    now.facet = Some(0);
-    now.eval = Some(in_model_coordinates(e, origin));
-    if e.state != ContactState::Open {
-        // the gap is computed from the rigid geometry's coordinates about the origin
-        let weights: [f64; 3] = std::array::from_fn(|j| x_s[j].abs().max(scale));
-        now.force = [-rs[0], -rs[1], -rs[2]];
-        assemble(&[3 * node, 3 * node + 1, 3 * node + 2], &rs, &rs, &ks, &weights);
-    }
-    now
-}
-
-/// The evaluation with its contact point in the model's coordinates again (the kernel
-/// computed about the slave's origin).
-fn in_model_coordinates(mut e: PointEval<f64>, origin: [f64; 3]) -> PointEval<f64> {
-    let rho = &mut e.projection.point.rho;
-    *rho = std::array::from_fn(|c| rho[c] + origin[c]);
-    e
 }
 
 #[cfg(test)]

@@ -143,6 +143,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
                 u: &committed.u,
                 t: 0.0,
             };
+            committed.contact.surface.set_penalty_weights(solid, penalty);
             committed.contact.surface.start_from_initial_configuration(&start);
         }
         Stepping {

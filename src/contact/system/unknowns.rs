@@ -90,6 +90,7 @@ impl ContactSystem {
     /// [`super::point::PointProblem::warm`]).
     pub fn set_warm_start(&mut self, warm: bool) {
         self.warm = warm;
+        self.surface.set_warm_start(warm);
     }
 
     pub fn kink(&self) -> Kink {
@@ -103,10 +104,10 @@ impl ContactSystem {
         points.filter(|(p, f)| at_kink(p, f)).count()
     }
 
-    /// `Σ C²` of the complementarity residuals at the last evaluation (see
-    /// [`super::decision::complementarity`]).
+    /// `Σ C²` of the complementarity residuals at the last evaluation, 2D and 3D points
+    /// (see [`super::decision::complementarity`], [`crate::contact3d::decision`]).
     pub fn complementarity2(&self) -> f64 {
-        self.complementarity2
+        self.complementarity2 + self.surface.complementarity2()
     }
 
     /// Make the force unknowns the contact forces of the current iterate (a converged one:
@@ -115,6 +116,7 @@ impl ContactSystem {
     /// the gap's last digits, `ε δζ`). Records, monitors and the committed history take
     /// them from the points' evaluations.
     pub fn adopt_forces(&mut self) {
+        self.surface.adopt_forces();
         for (now, forces) in self.current.iter_mut().zip(&self.forces) {
             for (p, f) in now.iter_mut().zip(forces) {
                 if let Some(e) = p.eval.as_mut().filter(|e| e.state != ContactState::Open) {
@@ -125,8 +127,8 @@ impl ContactSystem {
         }
     }
 
-    /// The norm of the contact force unknowns, `√Σ (N² + t²)` (a part of the reference
-    /// force of the convergence test).
+    /// The norm of the contact force unknowns, `√Σ (N² + t²)` over 2D and 3D points (a part
+    /// of the reference force of the convergence test).
     pub fn force_norm(&self) -> f64 {
         let sum: f64 = self
             .forces
@@ -134,7 +136,7 @@ impl ContactSystem {
             .flatten()
             .map(|f| f.normal * f.normal + f.tangential * f.tangential)
             .sum();
-        sum.sqrt()
+        (sum + self.surface.force_norm2()).sqrt()
     }
 
     /// Make this system's iterate that of `other` (a system of the same model at the same
@@ -182,6 +184,7 @@ impl ContactSystem {
     /// `N + ΔN = N_ε + ∇N_ε · Δu`, `T_1 + ΔT_1 = T_1,ε + ∇T_1,ε · Δu` of the decided state
     /// (the linearised constitutive equations; zero at an open point).
     pub fn correct_forces(&mut self, du: &dyn Fn(usize) -> f64) {
+        self.surface.correct_forces(du);
         for ((steps, lins), now) in self.forces_step.iter_mut().zip(&self.lin).zip(&self.current) {
             for ((step, lin), p) in steps.iter_mut().zip(lins).zip(now) {
                 let closed = p.eval.is_some_and(|e| e.state != ContactState::Open);
@@ -273,7 +276,7 @@ impl ContactSystem {
         for (c, b) in self.current.iter_mut().zip(&self.current_base) {
             c.copy_from_slice(b);
         }
-        self.surface.restore_iterate();
+        self.surface.to_step(s);
         for ((f, b), st) in self.forces.iter_mut().zip(&self.forces_base).zip(&self.forces_step) {
             for ((f, b), st) in f.iter_mut().zip(b).zip(st) {
                 *f = Forces {

@@ -1,0 +1,166 @@
+//! One slave point of a 3D pair at an iterate: paired with its master (a facet of a
+//! deformable face, a rigid plane or a rigid sphere), its friction history carried onto the
+//! facet it is on now, and its kernel evaluated into local arrays ([`PointLocal`]) with the
+//! global DOFs they belong to — the system ([`super::system`]) assembles them.
+
+use super::decision::SurfaceRule;
+use super::master::{facet_point, plane_facet, sphere_point, PointLocal};
+use super::point::{PointEval, DOFS};
+use super::projection::INSIDE_TOLERANCE;
+use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD};
+use super::surface::Facet;
+use super::system::{locate, Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
+use super::transfer::transfer;
+use crate::contact::law::ContactState;
+use crate::model::{RigidSurfaceShape, SurfaceMaster, SurfacePair};
+
+/// A point as evaluated: its state, the global DOFs of its local arrays, and the
+/// magnitudes of the coordinates they were computed from (the round-off weights of the
+/// residual criterion).
+pub struct Evaluated {
+    pub now: SurfaceNow,
+    pub dofs: [usize; DOFS],
+    pub positions: [f64; DOFS],
+}
+
+impl Evaluated {
+    fn unpaired() -> Self {
+        Evaluated {
+            now: SurfaceNow::default(),
+            dofs: [0; DOFS],
+            positions: [0.0; DOFS],
+        }
+    }
+}
+
+/// Pair and evaluate slave `is` of `pair`, its state decided by `decider` (the rule and
+/// whether it decides by the force unknowns alone); the local arrays into `local`.
+pub fn evaluate_point(
+    cfg: &SurfaceConfig,
+    (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
+    (grid, start, borders): (Option<&FacetGrid>, Option<usize>, &[[bool; 4]]),
+    plane_half: f64,
+    decider: (SurfaceRule, bool),
+    local: &mut PointLocal,
+) -> Evaluated {
+    match &pair.master {
+        SurfaceMaster::Facets { facets, .. } => {
+            let grid = grid.expect("a facet master has a grid");
+            on_facets(cfg, (pair, is, hist), facets, (grid, start, borders), decider, local)
+        }
+        SurfaceMaster::Rigid(rigid) => on_rigid(cfg, (pair, is, hist), rigid, plane_half, decider, local),
+    }
+}
+
+/// Slave `is` against the facets of a deformable face: located (from `start`), its history
+/// carried onto the facet it is on now, evaluated on its 5 nodes. A point whose contact
+/// point lies past the face's free border (`borders`) is not paired ([`past_free_border`]),
+/// unless it was closed on that facet at the last converged increment and is still
+/// penetrating, within [`FREE_BORDER_HOLD`] of the border.
+fn on_facets(
+    cfg: &SurfaceConfig,
+    (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
+    facets: &[[usize; 4]],
+    (grid, start, borders): (&FacetGrid, Option<usize>, &[[bool; 4]]),
+    decider: (SurfaceRule, bool),
+    local: &mut PointLocal,
+) -> Evaluated {
+    let node = pair.slaves[is];
+    let origin = cfg.model.nodes[node];
+    let mut out = Evaluated::unpaired();
+    let Some(f) = locate(cfg, facets, grid, cfg.node(node), start, pair.search_radius) else {
+        return out;
+    };
+    out.now.facet = Some(f);
+    let facet_b = cfg.facet_about(&facets[f], origin);
+    let carried = match (hist.history.filter(|_| hist.closed), hist.facet) {
+        (Some(h), Some(a)) if a != f => {
+            let facet_a = Facet {
+                x: cfg.facet_about(&facets[a], origin),
+            };
+            let carried = transfer(pair.transfer, &facet_a, &h, &Facet { x: facet_b }).ok();
+            out.now.history_lost = carried.is_none();
+            out.now.carried = carried.map(|to| Carried {
+                from_facet: a,
+                from: h,
+                to,
+            });
+            carried
+        }
+        (h, _) => h,
+    };
+    let x_s = cfg.node_about(node, origin);
+    let Ok(e) = facet_point(pair.law_of(is), (x_s, facet_b), carried, decider, local) else {
+        out.now.facet = None;
+        return out;
+    };
+    let past = past_free_border(e.projection.point.xi, borders[f]);
+    let held = hist.closed && hist.facet == Some(f) && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
+    if past > INSIDE_TOLERANCE && !held {
+        return Evaluated::unpaired();
+    }
+    out.now.eval = Some(in_model_coordinates(e, origin));
+    let nodes = [node, facets[f][0], facets[f][1], facets[f][2], facets[f][3]];
+    out.dofs = std::array::from_fn(|i| 3 * nodes[i / 3] + i % 3);
+    let locals = [x_s, facet_b[0], facet_b[1], facet_b[2], facet_b[3]];
+    out.positions = std::array::from_fn(|j| locals[j / 3][j % 3].abs());
+    out
+}
+
+/// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel)
+/// or a rigid sphere; evaluated on the slave's 3 DOFs.
+fn on_rigid(
+    cfg: &SurfaceConfig,
+    (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
+    rigid: &crate::model::RigidSurface,
+    plane_half: f64,
+    decider: (SurfaceRule, bool),
+    local: &mut PointLocal,
+) -> Evaluated {
+    let node = pair.slaves[is];
+    let origin = cfg.model.nodes[node];
+    let x_s = cfg.node_about(node, origin);
+    let law = pair.law_of(is);
+    let mut out = Evaluated::unpaired();
+    let offset = rigid.offset(cfg.t);
+    let (e, scale) = match rigid.shape {
+        RigidSurfaceShape::Plane { point, normal } => {
+            let facet = plane_facet(point, normal, plane_half, offset, origin);
+            let history = hist.history.filter(|_| hist.closed);
+            let Ok(e) = facet_point(law, (x_s, facet), history, decider, local) else {
+                return out;
+            };
+            local.keep_slave();
+            (e, plane_half)
+        }
+        RigidSurfaceShape::Sphere { centre, radius } => {
+            let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
+            let e = sphere_point(&law, x_s, (centre, radius), decider, local);
+            (e, crate::contact3d::vec3::norm(centre) + radius)
+        }
+    };
+    if e.projection.gap > pair.search_radius {
+        return out;
+    }
+    out.now.facet = Some(0);
+    out.now.eval = Some(in_model_coordinates(e, origin));
+    out.dofs[..3].copy_from_slice(&[3 * node, 3 * node + 1, 3 * node + 2]);
+    // the gap is computed from the rigid geometry's coordinates about the origin
+    for (p, x) in out.positions.iter_mut().zip(x_s) {
+        *p = x.abs().max(scale);
+    }
+    out
+}
+
+/// The evaluation with its contact point in the model's coordinates again (the kernel
+/// computed about the slave's origin).
+fn in_model_coordinates(mut e: PointEval<f64>, origin: [f64; 3]) -> PointEval<f64> {
+    let rho = &mut e.projection.point.rho;
+    *rho = std::array::from_fn(|c| rho[c] + origin[c]);
+    e
+}
+
+/// Whether the point is closed at this evaluation.
+pub fn is_closed(now: &SurfaceNow) -> bool {
+    now.eval.is_some_and(|e| e.state != ContactState::Open)
+}
