@@ -68,7 +68,7 @@ fn on_facets(
     let node = pair.slaves[is];
     let origin = cfg.model.nodes[node];
     let mut out = Evaluated::unpaired();
-    let Some(f) = locate(cfg, facets, grid, cfg.node(node), start, pair.search_radius) else {
+    let Some(f) = locate(cfg, facets, grid, (node, origin), start, pair.search_radius) else {
         return out;
     };
     out.now.facet = Some(f);

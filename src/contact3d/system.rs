@@ -126,8 +126,9 @@ pub struct SurfaceSystem {
     pub(super) forces: Vec<Vec<SurfaceForces>>,
     pub(super) forces_base: Vec<Vec<SurfaceForces>>,
     pub(super) forces_step: Vec<Vec<SurfaceForces>>,
-    /// Per pair, the weights `(ρ_N, ρ_T)` of the augmented forces (1: the penalty rule).
-    pub(super) weights: Vec<(f64, f64)>,
+    /// Per pair and point, the weights `(ρ_N, ρ_T)` of the augmented forces (1: the penalty
+    /// rule).
+    pub(super) weights: Vec<Vec<(f64, f64)>>,
     /// Decide by the force unknowns alone (the first iterate of an attempt).
     pub(super) warm: bool,
     /// `Σ C²` of the complementarity residuals at the last evaluation.
@@ -170,7 +171,9 @@ impl SurfaceSystem {
             forces: model.surface_contacts.iter().map(per_pair_forces).collect(),
             forces_base: model.surface_contacts.iter().map(per_pair_forces).collect(),
             forces_step: model.surface_contacts.iter().map(per_pair_forces).collect(),
-            weights: vec![(1.0, 1.0); model.surface_contacts.len()],
+            weights: (model.surface_contacts.iter())
+                .map(|p| vec![(1.0, 1.0); p.slaves.len()])
+                .collect(),
             warm: false,
             complementarity2: 0.0,
         }
@@ -254,8 +257,8 @@ impl SurfaceSystem {
             if self.grids[ip].is_none() {
                 self.grids[ip] = facet_grid(cfg, pair);
             }
-            let (rho_n, rho_t) = self.weights[ip];
             for is in 0..pair.slaves.len() {
+                let (rho_n, rho_t) = self.weights[ip][is];
                 let hist = self.committed[ip][is];
                 let forces = self.forces[ip][is];
                 let rule = SurfaceRule::AlartCurnier { forces, rho_n, rho_t };
@@ -365,18 +368,21 @@ fn facet_grid(cfg: &SurfaceConfig, pair: &SurfacePair) -> Option<FacetGrid> {
 /// with the smallest `|ζ|`; else (`x` beyond every facet's edge: a convex edge or the
 /// face's border) the one whose projection lies least outside it, its extension then
 /// carrying the point (past the face's free border the caller leaves it unpaired, see
-/// [`on_facets`]). `None`: no facet within the search radius.
+/// [`super::evaluate`]). `None`: no facet within the search radius. The projections are
+/// computed about the slave's reference position `origin` (as the kernels are), so that a
+/// model far from the origin pairs as it does near it.
 pub fn locate(
     cfg: &SurfaceConfig,
     facets: &[[usize; 4]],
     grid: &FacetGrid,
-    x: [f64; 3],
+    (node, origin): (usize, [f64; 3]),
     start: Option<usize>,
     radius: f64,
 ) -> Option<usize> {
+    let x = cfg.node_about(node, origin);
     let try_facet = |f: usize| -> Option<(f64, f64)> {
         let facet = Facet {
-            x: facets[f].map(|n| cfg.node(n)),
+            x: cfg.facet_about(&facets[f], origin),
         };
         let p = project(&facet, x).ok()?;
         let excess = p.point.xi.iter().map(|v| v.abs() - 1.0).fold(0.0, f64::max);
@@ -388,7 +394,7 @@ pub fn locate(
         }
     }
     let mut best: Option<(usize, (f64, f64))> = None;
-    for &f in grid.candidates(x) {
+    for &f in grid.candidates(cfg.node(node)) {
         let Some(score) = try_facet(f) else { continue };
         let inside = |s: (f64, f64)| s.0 <= INSIDE_TOLERANCE;
         let better = match best {

@@ -41,15 +41,12 @@ impl PointLinearization {
 impl SurfaceSystem {
     /// Decide every point by the penalty rule (`penalty`: the seed's active set,
     /// [`crate::settings::ActiveSet::Penalty`]; weights 1) or by the augmented forces with
-    /// the weights `ρ = min(1, c/ε)` of each pair ([`crate::contact::decision::weights`]).
+    /// each point's weights ([`augmented_weights`]).
     pub fn set_penalty_weights(&mut self, model: &Model<Solid>, penalty: bool) {
         self.weights = (model.surface_contacts.iter())
-            .map(|p| {
-                if penalty {
-                    (1.0, 1.0)
-                } else {
-                    augmented_weights(model, p)
-                }
+            .map(|p| match penalty {
+                true => vec![(1.0, 1.0); p.slaves.len()],
+                false => augmented_weights(model, p),
             })
             .collect();
     }
@@ -120,9 +117,13 @@ impl SurfaceSystem {
     }
 }
 
-/// The weights `ρ = min(1, c/ε)` of a 3D pair's augmented forces, with `c` the smaller
-/// plane-strain modulus of the deformable bodies it joins (as in 2D).
-fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> (f64, f64) {
+/// The weights of a 3D pair's augmented forces, per slave point: `ρ = min(1, c/(ε √A))`
+/// ([`crate::contact::decision::weights`] with the stiffness `c/√A`), `c` the smaller
+/// plane-strain modulus of the deformable bodies the pair joins and `A` the slave's
+/// tributary area. The point's penalty spring is `ε A` and the bodies' stiffness at a node
+/// of that spacing about `c √A`: their ratio is dimensionless, so the decisions — and the
+/// iterations — are the same in any units.
+fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> Vec<(f64, f64)> {
     let body_of =
         |node: usize| (model.bodies.iter()).find(|b| (b.first_node..b.first_node + b.node_count).contains(&node));
     let mut c = f64::INFINITY;
@@ -134,8 +135,13 @@ fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> (f64, f64) {
     if let SurfaceMaster::Facets { body, .. } = pair.master {
         c = c.min(model.bodies[body].material.plane_strain_modulus());
     }
-    if !c.is_finite() {
-        return (1.0, 1.0);
-    }
-    crate::contact::decision::weights(c, pair.law.eps_n, pair.law.eps_t)
+    (0..pair.slaves.len())
+        .map(|is| {
+            let area = pair.areas.get(is).copied().unwrap_or(1.0);
+            match c.is_finite() && area > 0.0 {
+                true => crate::contact::decision::weights(c / area.sqrt(), pair.law.eps_n, pair.law.eps_t),
+                false => (1.0, 1.0),
+            }
+        })
+        .collect()
 }
