@@ -34,44 +34,7 @@
 
 mod common;
 
-const SLIDE: &str = r#"name = "stiff-slide-3d"
-[[body]]
-name = "slab"
-material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
-mesh = { kind = "box", origin = [-0.55, -0.45, -0.5], size = [4.0, 3.0, 0.5], elements = [8, 6, 1] }
-[[body]]
-name = "block"
-material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
-mesh = { kind = "box", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 0.5], elements = [2, 2, 1] }
-[[fix]]
-body = "slab"
-nodes = "zmin"
-components = ["x", "y", "z"]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["z"]
-value = [[0.0, 0.0], [1.0, -0.01], [2.0, -0.01]]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["x"]
-value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.2165]]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["y"]
-value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.125]]
-[[contact]]
-name = "base"
-slave = { body = "block", nodes = "zmin" }
-master = { body = "slab", face = "zmax" }
-eps_n = 1.0e6
-eps_t = 1.0e5
-mu = 0.3
-[stepping]
-end = 2.0
-"#;
+const SLIDE: &str = include_str!("data/slide-3d-small.toml");
 
 fn scene(increments: usize, active_set: &str) -> String {
     format!("{SLIDE}increments = {increments}\n[solver]\nactive_set = \"{active_set}\"\n")

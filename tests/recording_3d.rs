@@ -20,45 +20,7 @@ use std::sync::atomic::AtomicBool;
 /// A block pressed onto a slab, then dragged at 30° to the slab's mesh lines across its
 /// facets (μ = 0.3); the slab's nodes are offset from the block's, so that no slave node
 /// starts on a facet edge.
-const SLIDE: &str = r#"name = "slide-3d-small"
-[[body]]
-name = "slab"
-material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
-mesh = { kind = "box", origin = [-0.55, -0.45, -0.5], size = [4.0, 3.0, 0.5], elements = [8, 6, 1] }
-[[body]]
-name = "block"
-material = { model = "neo-hookean", young = 1000.0, poisson = 0.3 }
-mesh = { kind = "box", origin = [0.0, 0.0, 0.0], size = [1.0, 1.0, 0.5], elements = [2, 2, 1] }
-[[fix]]
-body = "slab"
-nodes = "zmin"
-components = ["x", "y", "z"]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["z"]
-value = [[0.0, 0.0], [1.0, -0.01], [2.0, -0.01]]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["x"]
-value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.2165]]
-[[fix]]
-body = "block"
-nodes = "zmax"
-components = ["y"]
-value = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.125]]
-[[contact]]
-name = "base"
-slave = { body = "block", nodes = "zmin" }
-master = { body = "slab", face = "zmax" }
-eps_n = 1.0e6
-eps_t = 1.0e5
-mu = 0.3
-[stepping]
-end = 2.0
-increments = 8
-"#;
+const SLIDE_BASE: &str = include_str!("data/slide-3d-small.toml");
 
 /// Run into an in-memory MCAP and a `Memory`.
 fn record(origin: &str, text: &str) -> (Recording, Memory) {
@@ -80,7 +42,7 @@ fn json(p: &SurfacePointRecord) -> String {
 
 #[test]
 fn a_sliding_block_reads_back_bit_for_bit_with_its_crossings_and_carried_histories() {
-    let (r, mem) = record("slide-3d-small.toml", SLIDE);
+    let (r, mem) = record("slide-3d-small.toml", &format!("{SLIDE_BASE}increments = 8\n"));
     assert_eq!(r.model.surface_contacts.len(), 1);
     let pair = &r.model.surface_contacts[0];
     assert_eq!((pair.slave_nodes.len(), pair.master_facets.len()), (9, 48));

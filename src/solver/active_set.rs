@@ -111,6 +111,11 @@ impl ActiveSetWatch {
             .any(|(&l, &c)| c > 0 && l + window > self.iteration)
     }
 
+    /// How many points, 2D and 3D, changed state or segment in this attempt.
+    pub fn changed_points(&self) -> usize {
+        self.changes.iter().filter(|&&c| c > 0).count()
+    }
+
     /// The points that changed in this attempt, those still changing at the end first, then
     /// the most changes (at most `max`): the points to blame are the ones that never settled.
     pub fn report(&self, contact: &ContactSystem, model: &crate::model::Model, max: usize) -> Vec<ChangingPoint> {

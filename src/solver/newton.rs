@@ -464,11 +464,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
     fn failure(&self) -> NewtonFailure {
         let iterations = self.ws.residuals.len() - 1;
         if self.ws.watch.cycling(3) {
-            let points = self
-                .ws
-                .watch
-                .report(&self.state.contact, self.model.plane(), usize::MAX)
-                .len();
+            let points = self.ws.watch.changed_points();
             return NewtonFailure::ActiveSetCycle { iterations, points };
         }
         NewtonFailure::MaxIterations { iterations }
