@@ -168,6 +168,16 @@ impl PointProblem {
             eval.complementarity = decision::complementarity(&self.rule, eval.state, forces, None, None);
             return Ok(eval);
         };
+        self.friction(&mut eval, h, &deciding, forces);
+        Ok(eval)
+    }
+
+    /// The frictional part of [`Self::evaluate`] for a closed point with history `h` on this
+    /// facet: the stick trial (seed eq. 1 on surfaces), stick or slip decided by `deciding`
+    /// with the penalty's and the augmented normal forces `forces`, the traction and the
+    /// complementarity residuals of that state.
+    fn friction<S: Scalar>(&self, eval: &mut PointEval<S>, h: History, deciding: &SurfaceRule, forces: (f64, f64)) {
+        let (mu, n_eps, n_hat) = (self.law.mu, eval.normal_force, forces.1);
         let p = &eval.projection.point;
         let slip = p.lower([p.xi[0] - h.xi[0], p.xi[1] - h.xi[1]]);
         let eps_t = self.law.eps_t;
@@ -178,7 +188,7 @@ impl PointProblem {
         let p_re = real_point(p);
         let trial_re = trial.map(|v| v.re());
         eval.trial = trial;
-        match decision::tangential(&deciding, mu, trial_re, &p_re, forces) {
+        match decision::tangential(deciding, mu, trial_re, &p_re, forces) {
             None => {
                 eval.traction = trial;
                 eval.state = ContactState::Stick;
@@ -189,7 +199,7 @@ impl PointProblem {
                 // the slip force of the condensed semismooth Newton (module docs of
                 // `decision`): `μ N_ε d + c P T^tr`, the seed's return map at a solution
                 let d = p_re.vector(slip.direction);
-                let c = decision::transverse_factor(&deciding, mu, n_hat, slip.size);
+                let c = decision::transverse_factor(deciding, mu, n_hat, slip.size);
                 let tv = p.vector(trial);
                 let along = tv[0] * d[0] + tv[1] * d[1] + tv[2] * d[2];
                 let force: V3<S> = std::array::from_fn(|i| n_eps * (mu * d[i]) + (tv[i] - along * d[i]) * c);
@@ -199,7 +209,6 @@ impl PointProblem {
                 eval.complementarity = decision::complementarity(&self.rule, eval.state, forces, None, slip);
             }
         }
-        Ok(eval)
     }
 
     /// Plain evaluation.
