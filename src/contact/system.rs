@@ -564,19 +564,15 @@ impl ContactSystem {
 /// with `c` the smaller plane-strain modulus of the deformable bodies it joins: the
 /// stiffness of the model's own scale against which a penalty is stiff or soft.
 fn augmented_weights(model: &Model, pair: &ContactPair) -> (f64, f64) {
-    let body_of =
-        |node: usize| (model.bodies.iter()).find(|b| (b.first_node..b.first_node + b.node_count).contains(&node));
-    let mut c = f64::INFINITY;
-    for s in &pair.slaves {
-        if let Slave::Node(n) = s {
-            if let Some(b) = body_of(*n) {
-                c = c.min(b.material.plane_strain_modulus());
-            }
-        }
-    }
-    if let Master::Face { body, .. } = pair.master {
-        c = c.min(model.bodies[body].material.plane_strain_modulus());
-    }
+    let slaves = pair.slaves.iter().filter_map(|s| match s {
+        Slave::Node(n) => Some(*n),
+        _ => None,
+    });
+    let master = match pair.master {
+        Master::Face { body, .. } => Some(body),
+        _ => None,
+    };
+    let c = model.contact_stiffness(slaves, master);
     if !c.is_finite() {
         return (1.0, 1.0);
     }

@@ -90,7 +90,9 @@ fn on_facets(
         (h, _) => h,
     };
     let x_s = cfg.node_about(node, origin);
-    let Ok(e) = facet_point(pair.law_of(is), (x_s, facet_b), carried, decider, local) else {
+    let law = pair.law_of(is);
+    out.now.frictional = carried.is_some() && law.mu > 0.0;
+    let Ok(e) = facet_point(law, (x_s, facet_b), carried, decider, local) else {
         out.now.facet = None;
         return out;
     };
@@ -127,6 +129,7 @@ fn on_rigid(
         RigidSurfaceShape::Plane { point, normal } => {
             let facet = plane_facet(point, normal, plane_half, offset, origin);
             let history = hist.history.filter(|_| hist.closed);
+            out.now.frictional = history.is_some() && law.mu > 0.0;
             let Ok(e) = facet_point(law, (x_s, facet), history, decider, local) else {
                 return out;
             };

@@ -71,6 +71,9 @@ pub struct SurfaceNow {
     pub force: [f64; 3],
     /// A closed point's linearised penalty forces (Newton's update of its force unknowns).
     pub linearization: Option<PointLinearization>,
+    /// The kernel had a friction history on this facet and `μ > 0`: the traction is the
+    /// return map's (otherwise zero: frictionless, or closing now).
+    pub frictional: bool,
     /// The friction history could not be carried onto this facet from the last converged
     /// one ([`super::transfer::TransferError`]: the facets folded onto each other, or the old
     /// point not found on the new facet): the point starts it afresh, as a point closing now.

@@ -108,7 +108,9 @@ impl SurfaceSystem {
             for (p, f) in now.iter_mut().zip(forces) {
                 if let Some(e) = p.eval.as_mut().filter(|e| e.state != ContactState::Open) {
                     e.normal_force = f.normal;
-                    if e.trial != [0.0; 2] || e.traction != [0.0; 2] {
+                    // a point without a friction history keeps its zero traction (its end
+                    // fixes the anchor)
+                    if p.frictional {
                         e.traction = e.projection.point.covariant(f.tangential);
                     }
                 }
@@ -124,17 +126,11 @@ impl SurfaceSystem {
 /// of that spacing about `c √A`: their ratio is dimensionless, so the decisions — and the
 /// iterations — are the same in any units.
 fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> Vec<(f64, f64)> {
-    let body_of =
-        |node: usize| (model.bodies.iter()).find(|b| (b.first_node..b.first_node + b.node_count).contains(&node));
-    let mut c = f64::INFINITY;
-    for &s in &pair.slaves {
-        if let Some(b) = body_of(s) {
-            c = c.min(b.material.plane_strain_modulus());
-        }
-    }
-    if let SurfaceMaster::Facets { body, .. } = pair.master {
-        c = c.min(model.bodies[body].material.plane_strain_modulus());
-    }
+    let master = match pair.master {
+        SurfaceMaster::Facets { body, .. } => Some(body),
+        SurfaceMaster::Rigid(_) => None,
+    };
+    let c = model.contact_stiffness(pair.slaves.iter().copied(), master);
     (0..pair.slaves.len())
         .map(|is| {
             let area = pair.areas.get(is).copied().unwrap_or(1.0);

@@ -142,6 +142,19 @@ impl<S: Dim> Default for Model<S> {
 }
 
 impl<S: Dim> Model<S> {
+    /// The smaller plane-strain modulus of the bodies that own `nodes` and of body `master`
+    /// (infinite when none of them is deformable): the stiffness against which the contact
+    /// Newton weighs a penalty ([`crate::contact::decision::weights`]).
+    pub fn contact_stiffness(&self, nodes: impl IntoIterator<Item = usize>, master: Option<usize>) -> f64 {
+        let body_of =
+            |node: usize| (self.bodies.iter()).find(|b| (b.first_node..b.first_node + b.node_count).contains(&node));
+        let slaves = nodes.into_iter().filter_map(body_of);
+        let master = master.map(|b| &self.bodies[b]);
+        (slaves.chain(master))
+            .map(|b| b.material.plane_strain_modulus())
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// The first monitor, if any.
     pub fn monitor(&self) -> Option<&Monitor> {
         self.monitors.first()
