@@ -227,17 +227,23 @@ name = "floor"
 }
 
 #[test]
-fn slaves_are_named_by_a_face_and_masters_must_exist() {
+fn slaves_are_a_face_or_a_straight_edge_and_masters_must_exist() {
     let glue = |from: &str, to: &str| format!("{BODIES}{}", GLUE.replace(from, to));
     let e = refused(
         &glue("nodes = \"zmin\"", "nodes = { z = 0.5 }"),
-        &["slave.nodes", "named by a face", "areas weigh the penalty"],
+        &[
+            "slave.nodes",
+            "neither a face nor a straight edge",
+            "not on one straight edge",
+        ],
     );
     assert!(e.contains("z = 0.5"), "{e}");
     refused(
         &glue("nodes = \"zmin\"", "nodes = \"all\""),
-        &["slave.nodes", "node set", "face"],
+        &["slave.nodes", "neither a face nor a straight edge"],
     );
+    let edge = glue("nodes = \"zmin\"", "nodes = { x = 0.0, z = 0.5 }").replace("two_pass = true", "");
+    refused(&format!("{edge}two_pass = true\n"), &["`two_pass` with an edge slave"]);
     refused(
         &glue("nodes = \"zmin\"", "nodes = \"bottom\""),
         &["no face `bottom`", "zmin"],
@@ -330,4 +336,33 @@ sphere = { centre = [0.5, 0.5, 1.4], radius = 0.5 }
     );
     // touching (gap 0) is fine
     assert!(build(&format!("{BODIES}{}{PRESS}", sphere.replace("1.4]", "1.5]"))).is_ok());
+}
+
+/// An edge slave: the top block's nodes on the line `x = 0, z = 0.5` (4 nodes, spacing 1/3)
+/// weighted by their tributary lengths (1/6, 1/3, 1/3, 1/6: the edge's length 1 in all),
+/// penalties per unit length; a master named `"zmax+xmax"` is the union of the two faces'
+/// facets (16 + 8).
+#[test]
+fn a_straight_edge_is_a_slave_weighted_by_lengths_and_faces_join_with_a_plus() {
+    let text = format!(
+        "{BODIES}{}",
+        GLUE.replace("nodes = \"zmin\"", "nodes = { x = 0.0, z = 0.5 }")
+    )
+    .replace("two_pass = true", "")
+    .replace("face = \"zmax\"", "face = \"zmax+xmax\"");
+    let m = build(&text).unwrap_or_else(|e| panic!("{e}"));
+    let pair = &m.surface_contacts[0];
+    assert_eq!(pair.measure, contrail::model::SlaveMeasure::Length);
+    assert_eq!(pair.slaves.len(), 4);
+    let expected = [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0];
+    for (l, e) in pair.areas.iter().zip(expected) {
+        assert!((l - e).abs() < 1e-12, "{:?}", pair.areas);
+    }
+    let ys: Vec<f64> = pair.slaves.iter().map(|&n| m.nodes[n][1]).collect();
+    let monotone = ys.windows(2).all(|w| w[0] < w[1]) || ys.windows(2).all(|w| w[0] > w[1]);
+    assert!(monotone, "sorted along the edge: {ys:?}");
+    let SurfaceMaster::Facets { facets, .. } = &pair.master else {
+        panic!("a face master")
+    };
+    assert_eq!(facets.len(), 16 + 8);
 }

@@ -10,7 +10,7 @@ use super::projection::INSIDE_TOLERANCE;
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD};
 use super::surface::Facet;
 use super::system::{locate, Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
-use super::transfer::transfer;
+use super::transfer::{transfer, trial_against_continuous, Scheme};
 use crate::contact::law::ContactState;
 use crate::model::{RigidSurfaceShape, SurfaceMaster, SurfacePair};
 
@@ -78,8 +78,12 @@ fn on_facets(
             let facet_a = Facet {
                 x: cfg.facet_about(&facets[a], origin),
             };
-            let carried = transfer(pair.transfer, &facet_a, &h, &Facet { x: facet_b }).ok();
+            let facet_now = Facet { x: facet_b };
+            let carried = transfer(pair.transfer, &facet_a, &h, &facet_now).ok();
             out.now.history_lost = carried.is_none();
+            if let (Some(to), false) = (carried, pair.transfer == Scheme::Continuous) {
+                out.now.trial_jump = trial_against_continuous(&facet_a, &h, &facet_now, &to, pair.law_of(is).eps_t);
+            }
             out.now.carried = carried.map(|to| Carried {
                 from_facet: a,
                 from: h,

@@ -81,6 +81,10 @@ pub struct SurfaceNow {
     /// The history carried onto `facet` from another one in this increment: where it was,
     /// and what it became (see [`Carried`]).
     pub carried: Option<Carried>,
+    /// With a scheme other than the parallel translation: the trial tractions of its carried
+    /// history and of the translated one, `(continuous, scheme)`
+    /// ([`super::transfer::trial_against_continuous`]).
+    pub trial_jump: Option<(f64, f64)>,
 }
 
 /// A friction history carried from the facet of the last converged increment onto another
@@ -335,11 +339,25 @@ impl SurfaceSystem {
 
     /// Make the current iterate the converged state; returns the number of crossings
     /// (points closed before and now, on another facet).
-    pub fn commit(&mut self) -> usize {
-        let mut crossings = 0;
-        for (hist, now) in self.committed.iter_mut().flatten().zip(self.current.iter().flatten()) {
+    pub fn commit(&mut self) -> SurfaceCommit {
+        let mut out = SurfaceCommit::default();
+        let slaves: Vec<(usize, usize)> = (self.committed.iter().enumerate())
+            .flat_map(|(p, v)| (0..v.len()).map(move |s| (p, s)))
+            .collect();
+        let points = self.committed.iter_mut().flatten().zip(self.current.iter().flatten());
+        for ((hist, now), &(pair, slave)) in points.zip(&slaves) {
             let closed = now.eval.is_some_and(|e| e.state != ContactState::Open);
-            crossings += usize::from(closed && hist.closed && hist.facet != now.facet);
+            let crossing = closed && hist.closed && hist.facet != now.facet;
+            out.crossings += usize::from(crossing);
+            if let (true, Some(trial), Some(carried)) = (crossing, now.trial_jump, now.carried) {
+                out.trials.push(SurfaceCrossingTrial {
+                    pair,
+                    slave,
+                    from_facet: carried.from_facet,
+                    to_facet: now.facet.unwrap_or(usize::MAX),
+                    trial,
+                });
+            }
             *hist = SurfaceHistory {
                 facet: now.facet,
                 closed,
@@ -353,8 +371,27 @@ impl SurfaceSystem {
                     }),
             };
         }
-        crossings
+        out
     }
+}
+
+/// What a converged increment's commit found: the crossings, and at those whose history a
+/// scheme other than the parallel translation carried, its trial traction against the
+/// translation's.
+#[derive(Debug, Clone, Default)]
+pub struct SurfaceCommit {
+    pub crossings: usize,
+    pub trials: Vec<SurfaceCrossingTrial>,
+}
+
+/// One crossing's trial tractions `(continuous, scheme)` (see [`SurfaceNow::trial_jump`]).
+#[derive(Debug, Clone, Copy)]
+pub struct SurfaceCrossingTrial {
+    pub pair: usize,
+    pub slave: usize,
+    pub from_facet: usize,
+    pub to_facet: usize,
+    pub trial: (f64, f64),
 }
 
 /// The search grid of a pair with a deformable master (`None` for a rigid one).

@@ -24,6 +24,7 @@ fn two_facets(folded: bool) -> Model<Solid> {
             name: "pair".into(),
             slaves: vec![6],
             areas: vec![1.0],
+            measure: Default::default(),
             master: SurfaceMaster::Facets {
                 body: 0,
                 facets: vec![[0, 1, 4, 3], second],

@@ -140,3 +140,25 @@ pub fn transfer(scheme: Scheme, a: &Facet<f64>, history: &History, b: &Facet<f64
         traction: pb.covariant(carried),
     })
 }
+
+/// The trial tractions a history carried onto `B` by some scheme gives against the parallel
+/// translation's: `(‖T^tr_c‖, ‖T^tr_s‖)` in `B`'s metric at the translated point, where
+/// `T^tr_s − T^tr_c = (T^s − T^c) + ε_T a_αβ (ξ_s − ξ_c)^β` (`T^tr = T − ε_T a_αβ (ξ − ξ_B)^β`
+/// of each). `None` where the parallel translation itself fails. The 3D counterpart of the 2D
+/// crossing's trial before and after: a scheme that does not carry the history makes them
+/// differ (straightforward: by about `ε_T ℓ`, the jump of `ξ` across an edge).
+pub fn trial_against_continuous(
+    a: &Facet<f64>,
+    history: &History,
+    b: &Facet<f64>,
+    carried: &History,
+    eps_t: f64,
+) -> Option<(f64, f64)> {
+    let cont = transfer(Scheme::Continuous, a, history, b).ok()?;
+    let p = b.point(cont.xi).ok()?;
+    let dxi = [carried.xi[0] - cont.xi[0], carried.xi[1] - cont.xi[1]];
+    let shift = p.lower(dxi);
+    let scheme: [f64; 2] =
+        std::array::from_fn(|k| cont.traction[k] + (carried.traction[k] - cont.traction[k]) + eps_t * shift[k]);
+    Some((p.norm(cont.traction), p.norm(scheme)))
+}

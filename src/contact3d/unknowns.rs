@@ -7,7 +7,7 @@ use super::decision::SurfaceForces;
 use super::point::{SurfaceLinearization, DOFS};
 use super::system::SurfaceSystem;
 use crate::contact::law::ContactState;
-use crate::model::{Model, Solid, SurfaceMaster, SurfacePair};
+use crate::model::{Model, SlaveMeasure, Solid, SurfaceMaster, SurfacePair};
 
 /// A closed point's linearised penalty forces and the global DOFs of their gradients (the
 /// first `len` entries).
@@ -124,7 +124,8 @@ impl SurfaceSystem {
 /// plane-strain modulus of the deformable bodies the pair joins and `A` the slave's
 /// tributary area. The point's penalty spring is `ε A` and the bodies' stiffness at a node
 /// of that spacing about `c √A`: their ratio is dimensionless, so the decisions — and the
-/// iterations — are the same in any units.
+/// iterations — are the same in any units. On an edge slave (tributary length `ℓ`) the
+/// spring is `ε ℓ` and the stiffness `c ℓ`: `ρ = min(1, c/ε)`.
 fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> Vec<(f64, f64)> {
     let master = match pair.master {
         SurfaceMaster::Facets { body, .. } => Some(body),
@@ -133,9 +134,15 @@ fn augmented_weights(model: &Model<Solid>, pair: &SurfacePair) -> Vec<(f64, f64)
     let c = model.contact_stiffness(pair.slaves.iter().copied(), master);
     (0..pair.slaves.len())
         .map(|is| {
-            let area = pair.areas.get(is).copied().unwrap_or(1.0);
-            match c.is_finite() && area > 0.0 {
-                true => crate::contact::decision::weights(c / area.sqrt(), pair.law.eps_n, pair.law.eps_t),
+            let measure = pair.areas.get(is).copied().unwrap_or(1.0);
+            // the body's stiffness per unit of the slave's measure: c/√A on a face, c along
+            // an edge (spring ε ℓ against c ℓ)
+            let stiffness = match pair.measure {
+                SlaveMeasure::Area => c / measure.sqrt(),
+                SlaveMeasure::Length => c,
+            };
+            match c.is_finite() && measure > 0.0 {
+                true => crate::contact::decision::weights(stiffness, pair.law.eps_n, pair.law.eps_t),
                 false => (1.0, 1.0),
             }
         })

@@ -129,7 +129,7 @@ pub fn hex8_centre_fields(
     let geo = Hex8Geometry::new(kind, x)?;
     let mut alpha = [0.0; EAS_COUNT];
     hex8_residual_tangent_with(kind, material, &geo, u, &mut alpha, &mut [0.0; 24], None)?;
-    let e = hex8_gauss_strains(&geo, u, &alpha)
+    let e = hex8_gauss_strains(&geo, u, &alpha)?
         .iter()
         .fold(Vector6::zeros(), |a, q| a + q * 0.125);
     let (s, _) = material.stress_tangent_3d(&e)?;

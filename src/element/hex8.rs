@@ -117,8 +117,11 @@ const PAIRS: [(usize, usize); 6] = super::material3d::VOIGT_PAIRS;
 pub enum Hex8Kind {
     /// Trilinear displacement element (locks in bending and near incompressibility).
     Hex8,
-    /// Trilinear element with the nine enhanced strain modes (module documentation).
+    /// Trilinear element with the enhanced strain modes (module documentation).
     Hex8Eas,
+    /// The solid-shell for thin bodies: assumed transverse shear and thickness strains and
+    /// five enhanced modes, `ζ` through the thickness (`solid_shell.rs`).
+    SolidShell,
 }
 
 /// Failure of a hexahedron evaluation; a solver treats it as a divergent iteration.
@@ -156,8 +159,8 @@ pub fn hex8_jacobian(x: &[[f64; 3]; 8], d: &SMatrix<f64, 3, 8>) -> Matrix3<f64> 
     Matrix3::from_fn(|a, b| (0..8).map(|i| x[i][a] * d[(b, i)]).sum())
 }
 
-/// `T₀`: covariant natural Voigt strain → Cartesian Voigt strain (engineering shears), with
-/// `A = J₀⁻¹`: `E_ij = Σ_ab A_ai A_bj Ê_ab`.
+/// `T`: covariant natural Voigt strain → Cartesian Voigt strain (engineering shears), with
+/// `A = J⁻¹`: `E_ij = Σ_ab A_ai A_bj Ê_ab` (`T₀` with the centre Jacobian).
 fn strain_transformation(a: &Matrix3<f64>) -> Matrix6<f64> {
     Matrix6::from_fn(|p, q| {
         let ((i, j), (k, l)) = (PAIRS[p], PAIRS[q]);
@@ -170,10 +173,11 @@ fn strain_transformation(a: &Matrix3<f64>) -> Matrix6<f64> {
     })
 }
 
-/// `M(ξ, η, ζ)`: the enhanced modes in natural Voigt components ([`EAS_MODES`]).
-fn eas_interpolation(p: &[f64; 3]) -> SMatrix<f64, 6, EAS_COUNT> {
+/// `M(ξ, η, ζ)`: the enhanced `modes` ([`EAS_MODES`] or the solid-shell's) in natural Voigt
+/// components, in the first columns.
+fn eas_interpolation(modes: &[(usize, &[usize])], p: &[f64; 3]) -> SMatrix<f64, 6, EAS_COUNT> {
     let mut m = SMatrix::zeros();
-    for (c, &(row, axes)) in EAS_MODES.iter().enumerate() {
+    for (c, &(row, axes)) in modes.iter().enumerate() {
         m[(row, c)] = axes.iter().map(|&a| p[a]).product::<f64>();
     }
     m
@@ -186,7 +190,8 @@ pub(crate) struct GaussGeom {
     pub grad: SMatrix<f64, 3, 8>,
     /// `j · w` (weights are 1 for 2×2×2 Gauss)
     pub dv: f64,
-    /// `Ẽ = G α` (6×9, zero for [`Hex8Kind::Hex8`])
+    /// `Ẽ = G α` (6×21, zero for [`Hex8Kind::Hex8`], the first five columns for
+    /// [`Hex8Kind::SolidShell`])
     pub g: SMatrix<f64, 6, EAS_COUNT>,
 }
 
@@ -201,6 +206,9 @@ pub struct Hex8Geometry {
     /// Penalty `p_m` on each enhanced parameter, `Π += ½ Σ p_m α_m²` (zero unless set from
     /// [`hex8_hourglass_holds`]).
     pub(crate) penalty: [f64; EAS_COUNT],
+    /// The reference nodes (the solid-shell samples its assumed strains from them).
+    pub(crate) x: [[f64; 3]; 8],
+    pub(crate) kind: Hex8Kind,
 }
 
 /// `det J` if it is positive and finite, else [`Hex8Error::BadGeometry`].
@@ -228,7 +236,8 @@ impl Hex8Geometry {
             let grad = jinv.transpose() * d;
             let g = match kind {
                 Hex8Kind::Hex8 => SMatrix::zeros(),
-                Hex8Kind::Hex8Eas => (det0 / det) * t0 * eas_interpolation(p),
+                Hex8Kind::Hex8Eas => (det0 / det) * t0 * eas_interpolation(&EAS_MODES, p),
+                Hex8Kind::SolidShell => (det0 / det) * t0 * eas_interpolation(&SHELL_EAS_MODES, p),
             };
             Ok(GaussGeom { grad, dv: det, g })
         };
@@ -244,6 +253,8 @@ impl Hex8Geometry {
             gp,
             axes: j0,
             penalty: [0.0; EAS_COUNT],
+            x: *x,
+            kind,
         })
     }
 
@@ -309,15 +320,26 @@ fn kinematics(gq: &GaussGeom, u: &[[f64; 3]; 8]) -> GaussKin {
 }
 
 /// The Green–Lagrange strain `E = E_c + G α` at the eight Gauss points (for output and tests;
-/// `α` as returned by the kernel for this `u`).
-pub fn hex8_gauss_strains(geo: &Hex8Geometry, u: &[[f64; 3]; 8], alpha: &[f64; EAS_COUNT]) -> [Vector6<f64>; 8] {
+/// `α` as returned by the kernel for this `u`; the solid-shell's assumed `E`).
+pub fn hex8_gauss_strains(
+    geo: &Hex8Geometry,
+    u: &[[f64; 3]; 8],
+    alpha: &[f64; EAS_COUNT],
+) -> Result<[Vector6<f64>; 8], Hex8Error> {
+    if geo.kind == Hex8Kind::SolidShell {
+        return solid_shell::shell_gauss_strains(geo, u, alpha);
+    }
     let al = SVector::from(*alpha);
-    geo.gp.map(|q| kinematics(&q, u).ec + q.g * al)
+    Ok(geo.gp.map(|q| kinematics(&q, u).ec + q.g * al))
 }
 
 #[path = "hex8_kernel.rs"]
 mod kernel;
 pub use kernel::{hex8_residual_tangent, hex8_residual_tangent_with, EAS_STRAIN_TOLERANCE};
+
+#[path = "solid_shell.rs"]
+mod solid_shell;
+pub use solid_shell::{SHELL_EAS_COUNT, SHELL_EAS_MODES};
 
 #[path = "hex8_stab.rs"]
 mod stab;
@@ -330,3 +352,7 @@ mod tests;
 #[cfg(test)]
 #[path = "hex8_mesh_tests.rs"]
 mod mesh_tests;
+
+#[cfg(test)]
+#[path = "solid_shell_tests.rs"]
+mod shell_tests;

@@ -1,12 +1,14 @@
 //! The hexahedron's residual and tangent: Gauss passes, the local Newton iteration on the
-//! enhanced parameters and their static condensation (formulation in [`super`]).
+//! enhanced parameters and their static condensation (formulation in [`super`]). The passes,
+//! the local iteration and the condensation take the element as eight [`PassPoint`]s with
+//! `N` enhanced modes, so the solid-shell (`solid_shell.rs`), whose strains are assumed
+//! rather than compatible, shares them.
 
 use super::{hex8_min_det_f, kinematics, GaussKin, Hex8Error, Hex8Geometry, Hex8Kind, Material, EAS_COUNT};
-use nalgebra::{Matrix3, SMatrix, SVector};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector6};
 
 type Vec24 = SVector<f64, 24>;
-type VecA = SVector<f64, EAS_COUNT>;
-type MatAA = SMatrix<f64, EAS_COUNT, EAS_COUNT>;
+type Mat24 = SMatrix<f64, 24, 24>;
 
 /// The local iteration on `α` has converged when its next step would change no enhanced
 /// strain by more than this (strains are O(1) at most; the 2D element's tolerance).
@@ -24,14 +26,37 @@ const EAS_MAX_ITERATIONS: usize = 25;
 /// displacement terms too (the 2D element's rule).
 const EAS_NEAR: f64 = 1e-6;
 
+/// One Gauss point as a pass sees it: the volume weight, the strain–displacement matrix
+/// `δE = B δu` (Cartesian Voigt, local DOFs `[u0x, u0y, u0z, u1x, …]`), the strain `E` of the
+/// displacements (compatible for the hexahedron, assumed for the solid-shell) and the
+/// enhanced interpolation `Ẽ = G α`.
+pub(crate) struct PassPoint<'a, const N: usize> {
+    pub dv: f64,
+    pub b: SMatrix<f64, 6, 24>,
+    pub e: Vector6<f64>,
+    pub g: &'a SMatrix<f64, 6, N>,
+}
+
+/// `K_uu += ∂²E/∂u∂u : S dv` at Gauss point `q` (the geometric stiffness), on the upper
+/// triangle of the 24×24 matrix.
+pub(crate) type GeometricStiffness<'a> = &'a dyn Fn(usize, &Vector6<f64>, f64, &mut Mat24);
+
+/// An element as the kernel evaluates it: eight Gauss points, the penalties on the enhanced
+/// parameters (`Π += ½ Σ p_m α_m²`) and its geometric stiffness.
+pub(crate) struct EnhancedElement<'a, const N: usize> {
+    pub points: [PassPoint<'a, N>; 8],
+    pub penalty: &'a [f64; N],
+    pub geometric: GeometricStiffness<'a>,
+}
+
 /// Sums of one pass over the Gauss points (`kuu` and `kaa` in full: each summed on its upper
 /// triangle and mirrored at the end of the pass).
-struct Sums {
+struct Sums<const N: usize> {
     ru: Vec24,
-    kuu: SMatrix<f64, 24, 24>,
-    kua: SMatrix<f64, 24, EAS_COUNT>,
-    kaa: MatAA,
-    ra: VecA,
+    kuu: Mat24,
+    kua: SMatrix<f64, 24, N>,
+    kaa: SMatrix<f64, N, N>,
+    ra: SVector<f64, N>,
     energy: f64,
 }
 
@@ -49,7 +74,7 @@ struct Wanted {
 
 /// `out += aᵀ b` on the upper triangle of the square `out` (`a`, `b`: `R × C`).
 #[inline]
-fn add_upper_tr_mul<const R: usize, const C: usize>(
+pub(crate) fn add_upper_tr_mul<const R: usize, const C: usize>(
     out: &mut SMatrix<f64, C, C>,
     a: &SMatrix<f64, R, C>,
     b: &SMatrix<f64, R, C>,
@@ -71,58 +96,61 @@ fn mirror_upper<const N: usize>(m: &mut SMatrix<f64, N, N>) {
     }
 }
 
+/// `K_uu += δ_ab (gᵀ Σ g)_IJ` on the upper triangle: the geometric stiffness of strains
+/// quadratic in the displacement gradients, `gsg` the 8×8 node-pair weights.
+pub(crate) fn add_node_pairs_upper(kuu: &mut Mat24, gsg: &SMatrix<f64, 8, 8>) {
+    for j in 0..8 {
+        for i in 0..=j {
+            for a in 0..3 {
+                kuu[(3 * i + a, 3 * j + a)] += gsg[(i, j)];
+            }
+        }
+    }
+}
+
 /// One pass over the Gauss points at the enhanced parameters `al`: with `eas`
 /// `R_α = Σ Gᵀ S dv`, `K_αα = Σ Gᵀ D G dv` (plus the penalties of held modes,
 /// `½ Σ p_m α_m²`); with `full` also `R_u`, the energy and `K_uα = Σ Bᵀ D G dv`, and with `k`
-/// `K_uu` (material part `Bᵀ D B` plus geometric part `δ_ab ∇N_I · S ∇N_J`).
-fn gauss_pass(
+/// `K_uu` (material part `Bᵀ D B` plus the element's geometric part).
+fn gauss_pass<const N: usize>(
     material: &Material,
-    geo: &Hex8Geometry,
-    kin: &[GaussKin; 8],
-    al: &VecA,
+    el: &EnhancedElement<'_, N>,
+    al: &SVector<f64, N>,
     wanted: Wanted,
-) -> Result<Sums, Hex8Error> {
+) -> Result<Sums<N>, Hex8Error> {
     let Wanted { eas, full, k: want_k } = wanted;
     let mut t = Sums {
         ru: Vec24::zeros(),
         kuu: SMatrix::zeros(),
         kua: SMatrix::zeros(),
-        kaa: MatAA::zeros(),
-        ra: VecA::zeros(),
+        kaa: SMatrix::zeros(),
+        ra: SVector::zeros(),
         energy: 0.0,
     };
-    for (gq, kq) in geo.gp.iter().zip(kin) {
-        let dv = gq.dv;
-        let e = if eas { kq.ec + gq.g * al } else { kq.ec };
+    for (q, p) in el.points.iter().enumerate() {
+        let dv = p.dv;
+        let e = if eas { p.e + p.g * al } else { p.e };
         let (s, d) = material.stress_tangent_3d(&e)?;
         if eas {
-            let dg = (d * gq.g) * dv;
-            t.ra += gq.g.tr_mul(&s) * dv;
-            add_upper_tr_mul(&mut t.kaa, &gq.g, &dg);
+            let dg = (d * p.g) * dv;
+            t.ra += p.g.tr_mul(&s) * dv;
+            add_upper_tr_mul(&mut t.kaa, p.g, &dg);
             if full {
-                t.kua += kq.b.tr_mul(&dg);
+                t.kua += p.b.tr_mul(&dg);
             }
         }
         if !full {
             continue;
         }
         t.energy += material.energy_3d(&e)? * dv;
-        t.ru += kq.b.tr_mul(&s) * dv;
+        t.ru += p.b.tr_mul(&s) * dv;
         if want_k {
-            add_upper_tr_mul(&mut t.kuu, &kq.b, &((d * kq.b) * dv));
-            let st = Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]);
-            let gsg = gq.grad.tr_mul(&(st * gq.grad)) * dv;
-            for j in 0..8 {
-                for i in 0..=j {
-                    for a in 0..3 {
-                        t.kuu[(3 * i + a, 3 * j + a)] += gsg[(i, j)];
-                    }
-                }
-            }
+            add_upper_tr_mul(&mut t.kuu, &p.b, &((d * p.b) * dv));
+            (el.geometric)(q, &s, dv, &mut t.kuu);
         }
     }
     if eas {
-        for (m, &pm) in geo.penalty.iter().enumerate().filter(|(_, p)| **p != 0.0) {
+        for (m, &pm) in el.penalty.iter().enumerate().filter(|(_, p)| **p != 0.0) {
             t.ra[m] += pm * al[m];
             t.kaa[(m, m)] += pm;
             t.energy += 0.5 * pm * al[m] * al[m];
@@ -137,8 +165,8 @@ fn gauss_pass(
 
 /// Largest change of an enhanced strain component, `max_q ‖G_q δα‖∞`, that the step `δα`
 /// makes at the Gauss points.
-fn enhanced_strain_change(geo: &Hex8Geometry, da: &VecA) -> f64 {
-    geo.gp.iter().map(|q| (q.g * da).amax()).fold(0.0, f64::max)
+fn enhanced_strain_change<const N: usize>(el: &EnhancedElement<'_, N>, da: &SVector<f64, N>) -> f64 {
+    el.points.iter().map(|q| (q.g * da).amax()).fold(0.0, f64::max)
 }
 
 /// Residual and (optionally) tangent of one hexahedron (builds its [`Hex8Geometry`] and
@@ -162,7 +190,7 @@ pub fn hex8_residual_tangent(
 ///   `kind`; `u` — nodal displacements;
 /// * `alpha` — enhanced parameters: read as the starting guess of the local Newton
 ///   iteration, overwritten with the `α` that solves `R_α(u, α) = 0` (left alone for
-///   [`Hex8Kind::Hex8`]);
+///   [`Hex8Kind::Hex8`]; the solid-shell uses its first [`super::SHELL_EAS_COUNT`]);
 /// * `r` — internal force `R* = ∂Π/∂u` (condensed), local DOF order `[u0x, u0y, u0z, u1x, …]`;
 /// * `k` — `K* = ∂R*/∂u`, row-major 24×24, when requested.
 ///
@@ -191,12 +219,43 @@ pub fn hex8_residual_tangent_with(
     if det_f <= 0.0 || !det_f.is_finite() {
         return Err(Hex8Error::Inverted(det_f));
     }
-    let kin = geo.gp.map(|q| kinematics(&q, u));
-    let eas = kind == Hex8Kind::Hex8Eas;
+    if kind == Hex8Kind::SolidShell {
+        return super::solid_shell::residual_tangent(material, geo, u, alpha, r, k);
+    }
+    let kin: [GaussKin; 8] = std::array::from_fn(|q| kinematics(&geo.gp[q], u));
+    let geometric = |q: usize, s: &Vector6<f64>, dv: f64, kuu: &mut Mat24| {
+        let grad = &geo.gp[q].grad;
+        let st = Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]);
+        add_node_pairs_upper(kuu, &(grad.tr_mul(&(st * grad)) * dv));
+    };
+    let el = EnhancedElement {
+        points: std::array::from_fn(|q| PassPoint {
+            dv: geo.gp[q].dv,
+            b: kin[q].b,
+            e: kin[q].ec,
+            g: &geo.gp[q].g,
+        }),
+        penalty: &geo.penalty,
+        geometric: &geometric,
+    };
+    enhanced_residual_tangent(material, &el, kind == Hex8Kind::Hex8Eas, alpha, r, k)
+}
+
+/// Residual, tangent and energy of an element given as [`EnhancedElement`]: with `eas` the
+/// local iteration on `α` (read as the start, left at the solution) and the condensation,
+/// else one pass at `α = 0`.
+pub(crate) fn enhanced_residual_tangent<const N: usize>(
+    material: &Material,
+    el: &EnhancedElement<'_, N>,
+    eas: bool,
+    alpha: &mut [f64; N],
+    r: &mut [f64; 24],
+    k: Option<&mut [f64; 576]>,
+) -> Result<f64, Hex8Error> {
     let want_k = k.is_some();
     let t = if eas {
-        let mut al = VecA::from(*alpha);
-        let (mut t, factor) = solve_enhanced(material, geo, &kin, &mut al, want_k)?;
+        let mut al = SVector::from(*alpha);
+        let (mut t, factor) = solve_enhanced(material, el, &mut al, want_k)?;
         condense(&mut t, &factor, want_k);
         alpha.copy_from_slice(al.as_slice());
         t
@@ -206,7 +265,7 @@ pub fn hex8_residual_tangent_with(
             full: true,
             k: want_k,
         };
-        gauss_pass(material, geo, &kin, &VecA::zeros(), wanted)?
+        gauss_pass(material, el, &SVector::zeros(), wanted)?
     };
     if let Some(kout) = k {
         for (i, row) in kout.chunks_exact_mut(24).enumerate() {
@@ -221,13 +280,13 @@ pub fn hex8_residual_tangent_with(
 
 /// `K_αα` factorised: by Cholesky (symmetric positive definite, as for a stable material
 /// state), else inverted by LU.
-enum KaaFactor {
-    Cholesky(nalgebra::Cholesky<f64, nalgebra::Const<EAS_COUNT>>),
-    Inverse(MatAA),
+enum KaaFactor<const N: usize> {
+    Cholesky(nalgebra::Cholesky<f64, nalgebra::Const<N>>),
+    Inverse(SMatrix<f64, N, N>),
 }
 
-impl KaaFactor {
-    fn new(kaa: &MatAA) -> Result<Self, Hex8Error> {
+impl<const N: usize> KaaFactor<N> {
+    fn new(kaa: &SMatrix<f64, N, N>) -> Result<Self, Hex8Error> {
         if let Some(c) = kaa.cholesky().filter(|c| c.l_dirty().iter().all(|v| v.is_finite())) {
             return Ok(KaaFactor::Cholesky(c));
         }
@@ -238,7 +297,7 @@ impl KaaFactor {
     }
 
     /// `K_αα⁻¹ b`.
-    fn solve(&self, b: &VecA) -> VecA {
+    fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
         match self {
             KaaFactor::Cholesky(c) => c.solve(b),
             KaaFactor::Inverse(inv) => inv * b,
@@ -252,13 +311,12 @@ impl KaaFactor {
 /// [`EAS_NEAR`]; from then on they are full, and a pass that finds `α` converged without
 /// being full is repeated fully at the same `α` (the same `α` and the same figures as full
 /// passes throughout).
-fn solve_enhanced(
+fn solve_enhanced<const N: usize>(
     material: &Material,
-    geo: &Hex8Geometry,
-    kin: &[GaussKin; 8],
-    al: &mut VecA,
+    el: &EnhancedElement<'_, N>,
+    al: &mut SVector<f64, N>,
     want_k: bool,
-) -> Result<(Sums, KaaFactor), Hex8Error> {
+) -> Result<(Sums<N>, KaaFactor<N>), Hex8Error> {
     let mut last = f64::INFINITY;
     let mut near = false;
     for it in 0..EAS_MAX_ITERATIONS {
@@ -267,10 +325,10 @@ fn solve_enhanced(
             full: near,
             k: want_k && near,
         };
-        let t = gauss_pass(material, geo, kin, al, wanted)?;
+        let t = gauss_pass(material, el, al, wanted)?;
         let factor = KaaFactor::new(&t.kaa)?;
         let da = factor.solve(&t.ra);
-        let step = enhanced_strain_change(geo, &da);
+        let step = enhanced_strain_change(el, &da);
         if !step.is_finite() {
             return Err(Hex8Error::EasSingular);
         }
@@ -293,14 +351,14 @@ fn solve_enhanced(
         full: false,
         k: false,
     };
-    let t = gauss_pass(material, geo, kin, al, wanted)?;
+    let t = gauss_pass(material, el, al, wanted)?;
     Err(Hex8Error::EasNotConverged(t.ra.norm()))
 }
 
 /// Static condensation at a converged `α`: `R* = R_u − K_uα K_αα⁻¹ R_α` and, with `want_k`,
 /// `K* = K_uu − K_uα K_αα⁻¹ K_αu`. With a Cholesky factor `K_αα = L Lᵀ`: `Y = L⁻¹ K_αu`,
 /// `R* = R_u − Yᵀ L⁻¹ R_α`, `K* = K_uu − Yᵀ Y` (symmetric by construction).
-fn condense(t: &mut Sums, factor: &KaaFactor, want_k: bool) {
+fn condense<const N: usize>(t: &mut Sums<N>, factor: &KaaFactor<N>, want_k: bool) {
     match factor {
         KaaFactor::Cholesky(c) => {
             let l = c.l_dirty();
@@ -312,7 +370,7 @@ fn condense(t: &mut Sums, factor: &KaaFactor, want_k: bool) {
                 .expect("a Cholesky factor has a nonzero diagonal");
             t.ru -= y.tr_mul(&z);
             if want_k {
-                let mut yty = SMatrix::<f64, 24, 24>::zeros();
+                let mut yty = Mat24::zeros();
                 add_upper_tr_mul(&mut yty, &y, &y);
                 mirror_upper(&mut yty);
                 t.kuu -= yty;

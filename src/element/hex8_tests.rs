@@ -40,7 +40,7 @@ pub(super) fn materials(nu: f64) -> [Material; 2] {
     ]
 }
 
-const KINDS: [Hex8Kind; 2] = [Hex8Kind::Hex8, Hex8Kind::Hex8Eas];
+const KINDS: [Hex8Kind; 3] = [Hex8Kind::Hex8, Hex8Kind::Hex8Eas, Hex8Kind::SolidShell];
 
 /// One evaluation on a given geometry: `(energy, R*, K*, α)`.
 fn eval_geo(
@@ -65,7 +65,7 @@ fn shifted(u: &[[f64; 3]; 8], dof: usize, h: f64) -> [[f64; 3]; 8] {
 }
 
 /// `max |K − FD(R)| / max |K|` with central differences of step `h`.
-fn tangent_fd_error(kind: Hex8Kind, m: &Material, geo: &Hex8Geometry, u: &[[f64; 3]; 8], h: f64) -> f64 {
+pub(super) fn tangent_fd_error(kind: Hex8Kind, m: &Material, geo: &Hex8Geometry, u: &[[f64; 3]; 8], h: f64) -> f64 {
     let (_, _, k, _) = eval_geo(kind, m, geo, u);
     let mut err = 0.0f64;
     for j in 0..24 {

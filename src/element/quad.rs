@@ -50,6 +50,9 @@ pub enum ElementKind {
     /// the element turns into the bilinear one when compressed as a whole beyond ≈ 15 %
     /// (`quad_stab.rs`, `compression_share`). Plain EAS in bending and at moderate strain.
     Q4EasSafe,
+    /// The 3D solid-shell for thin bodies (`element/solid_shell.rs`; 3D meshes only, a 2D
+    /// scene refuses it).
+    SolidShell,
 }
 
 /// Failure of an element evaluation; the solver treats it as a divergent iteration.

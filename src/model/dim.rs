@@ -115,7 +115,8 @@ pub struct SolidKind {
 
 impl SolidKind {
     /// The 3D formulation of a scene's element key: `q4` → plain trilinear, `q4-eas` and
-    /// `q4-eas-stab` → EAS-21, `q4-eas-safe` (the default) → EAS-21 with the holds.
+    /// `q4-eas-stab` → EAS-21, `q4-eas-safe` (the default) → EAS-21 with the holds,
+    /// `solid-shell` → the solid-shell (ANS and five enhanced modes).
     pub fn from_element(kind: ElementKind) -> Self {
         match kind {
             ElementKind::Q4 => SolidKind {
@@ -130,6 +131,10 @@ impl SolidKind {
                 kind: Hex8Kind::Hex8Eas,
                 hold: true,
             },
+            ElementKind::SolidShell => SolidKind {
+                kind: Hex8Kind::SolidShell,
+                hold: false,
+            },
         }
     }
 
@@ -139,6 +144,7 @@ impl SolidKind {
             (Hex8Kind::Hex8, _) => "hex8",
             (Hex8Kind::Hex8Eas, false) => "hex8-eas",
             (Hex8Kind::Hex8Eas, true) => "hex8-eas-safe",
+            (Hex8Kind::SolidShell, _) => "solid-shell",
         }
     }
 }

@@ -19,7 +19,7 @@ pub use dim::{AnyModel, Dim, ModelRef, Plane, Solid, SolidKind};
 pub use ramp::Ramp;
 pub use rigid::{Piece, RigidBody, RigidShape};
 use std::collections::BTreeMap;
-pub use surface_contact::{RigidSurface, RigidSurfaceShape, SurfaceMaster, SurfacePair};
+pub use surface_contact::{RigidSurface, RigidSurfaceShape, SlaveMeasure, SurfaceMaster, SurfacePair};
 
 /// One element: a quadrilateral in 2D, a hexahedron in 3D (nodes in the kernel's order).
 #[derive(Debug, Clone)]

@@ -7,6 +7,9 @@
 //! with `A_s` its tributary area on its face in the reference configuration (a quarter of
 //! each face quadrilateral it is a corner of), so `ε_N` is a pressure per unit penetration
 //! and the penalty's error does not depend on the mesh size ([`SurfacePair::law_of`]).
+//! A slave side that is a straight edge (nodes on one line, [`SlaveMeasure::Length`]) weighs
+//! its nodes by their tributary lengths instead: `ε_N` per unit length, the force of a 2D
+//! point per unit thickness along the edge.
 
 use super::contact::ContactLaw;
 use super::ramp::Ramp;
@@ -19,8 +22,11 @@ pub struct SurfacePair {
     pub name: String,
     /// Slave nodes (global ids).
     pub slaves: Vec<usize>,
-    /// Per slave: its tributary area `A_s` on its face (reference configuration).
+    /// Per slave: its tributary area `A_s` on its face (reference configuration), or its
+    /// tributary length on an edge slave ([`SurfacePair::measure`]).
     pub areas: Vec<f64>,
+    /// What `areas` measure.
+    pub measure: SlaveMeasure,
     pub master: SurfaceMaster,
     /// `ε_N`, `ε_T` per unit area, `μ`.
     pub law: ContactLaw,
@@ -39,6 +45,16 @@ impl SurfacePair {
             mu: self.law.mu,
         }
     }
+}
+
+/// What a 3D pair's slave weights measure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SlaveMeasure {
+    /// Tributary areas on a face: penalties per unit area.
+    #[default]
+    Area,
+    /// Tributary lengths along a straight edge: penalties per unit length.
+    Length,
 }
 
 /// What the slaves of a 3D pair press on.

@@ -3,7 +3,7 @@
 //! entry and the fix).
 
 use super::*;
-use crate::element::quad::Kinematics;
+use crate::element::quad::{ElementKind, Kinematics};
 
 /// The scene's end time, after checking `[stepping]` has `end > 0` and `increments ≥ 1`.
 pub(in crate::scene) fn checked_end(cx: &Ctx, s: &SceneFile) -> Result<f64, SceneError> {
@@ -64,6 +64,13 @@ pub(super) fn add_bodies(cx: &mut Ctx, s: &SceneFile, m: &mut Model) -> Result<(
     let mut mesh_files = Vec::new();
     for b in &s.bodies {
         let material = body_material(cx, b, m.bodies.iter().any(|o| o.name == b.name))?;
+        if b.element == ElementKind::SolidShell {
+            return Err(cx.err(
+                &b.name,
+                format!("body `{}`: `solid-shell` is a 3D element and this mesh is 2D", b.name),
+                "use q4-eas-safe (the default), q4-eas, q4-eas-stab or q4 for a 2D mesh; solid-shell for a box or Gmsh hexahedral mesh",
+            ));
+        }
         let kinematics = crate::scene::body_model::kinematics(cx, b)?;
         let mut mesh = body_mesh(cx.src, b)?;
         if kinematics == Kinematics::Axisymmetric {

@@ -4,8 +4,10 @@
 //! - A slave side is a named face of a deformable body: its distinct nodes, each weighted by
 //!   its tributary area `A_s` in the reference configuration (a quarter of the area of each
 //!   face quadrilateral it is a corner of), since 3D penalties are per unit area
-//!   (`N = ε_N A_s ⟨−ζ⟩`). A coordinate selection or a node set that is not a face is refused:
-//!   it has no areas.
+//!   (`N = ε_N A_s ⟨−ζ⟩`); or a node set or coordinate selection on one straight line, an
+//!   edge, each node weighted by its tributary length (penalties per unit length,
+//!   `edge_slave.rs`). Other selections are refused: they have neither areas nor lengths.
+//! - A face name may join several faces with `+` (`"zmax+xmin"`): one surface.
 //! - A master side is a face of a deformable body (its quadrilaterals as stored, outward) or a
 //!   rigid plane or sphere. `two_pass` adds the pair the other way round (`NAME/second-pass`,
 //!   the master face's nodes on the slave face), both passes with half the penalties, as in 2D.
@@ -23,8 +25,8 @@ use super::types::{ContactSpec, EnforcementKind, NodeSelection, RigidSpec, Scene
 use super::SceneError;
 use crate::contact3d::transfer::Scheme;
 use crate::model::{
-    ContactLaw, Dim, Model, RigidSurface, RigidSurfaceShape, Solid, SurfaceMaster, SurfacePair, TransferKind,
-    SECOND_PASS_SUFFIX,
+    ContactLaw, Dim, Model, RigidSurface, RigidSurfaceShape, SlaveMeasure, Solid, SurfaceMaster, SurfacePair,
+    TransferKind, SECOND_PASS_SUFFIX,
 };
 use std::collections::BTreeMap;
 
@@ -122,7 +124,7 @@ pub(super) fn add_surface_contacts(
     let mut second = Vec::new();
     for c in &s.contacts {
         refuse_2d_keys(cx, c)?;
-        let (slave_body, slave_face) = slave_face(cx, m, c)?;
+        let (slave_body, slave_side) = slave_side(cx, m, c)?;
         let master = surface_master(cx, m, c, rigid)?;
         let law = contact_law(cx, c)?;
         if let (SurfaceMaster::Rigid(r), true) = (&master, law.mu > 0.0) {
@@ -134,17 +136,31 @@ pub(super) fn add_surface_contacts(
                 ));
             }
         }
-        let (slaves, areas) = tributary_areas(&m.nodes, &slave_face);
+        let (slaves, areas, measure) = match &slave_side {
+            SlaveSide::Face(face) => {
+                let (slaves, areas) = tributary_areas(&m.nodes, face);
+                (slaves, areas, SlaveMeasure::Area)
+            }
+            SlaveSide::Edge(slaves, lengths) => (slaves.clone(), lengths.clone(), SlaveMeasure::Length),
+        };
         let mut pair = SurfacePair {
             name: c.name.clone(),
             slaves,
             areas,
+            measure,
             master,
             law,
             transfer: scheme(cx, c)?,
             search_radius: c.search_radius.unwrap_or(2.0 * h),
         };
         if c.two_pass {
+            let SlaveSide::Face(slave_face) = slave_side else {
+                return Err(cx.err(
+                    &c.name,
+                    format!("contact `{}`: `two_pass` with an edge slave: an edge has no face to be the second pass's master", c.name),
+                    "remove two_pass (an edge presses on the master face from one side only)",
+                ));
+            };
             second.push(second_pass(cx, m, c, &mut pair, slave_body, slave_face)?);
         }
         m.surface_contacts.push(pair);
@@ -198,24 +214,51 @@ fn scheme(cx: &Ctx, c: &ContactSpec) -> Result<Scheme, SceneError> {
     }
 }
 
-/// The slave body and face of a pair: `slave = { body, nodes = "FACE" }`.
-fn slave_face(cx: &Ctx, m: &Model<Solid>, c: &ContactSpec) -> Result<(usize, Vec<[usize; 4]>), SceneError> {
+/// A 3D slave side: a face's quadrilaterals, or an edge's nodes with their tributary lengths.
+enum SlaveSide {
+    Face(Vec<[usize; 4]>),
+    Edge(Vec<usize>, Vec<f64>),
+}
+
+/// The slave body and side of a pair: `slave = { body, nodes = "FACE" }`, or a node set or
+/// coordinate selection whose nodes lie on one straight line (an edge, weighted by lengths:
+/// `edge_slave.rs`).
+fn slave_side(cx: &Ctx, m: &Model<Solid>, c: &ContactSpec) -> Result<(usize, SlaveSide), SceneError> {
     let (Some(b), Some(sel)) = (&c.slave.body, &c.slave.nodes) else {
         return Err(cx.err(&c.name, format!("contact `{}`: invalid slave", c.name), SLAVE_HINT));
     };
     let bi = body_index(cx, m, b)?;
-    match sel {
-        NodeSelection::Named(name) => Ok((bi, named_face(cx, m, bi, name, "slave.nodes")?)),
-        NodeSelection::Where(_) => Err(cx.err(
+    if let NodeSelection::Named(name) = sel {
+        if m.bodies[bi].faces.contains_key(name) || !m.bodies[bi].node_sets.contains_key(name) {
+            return Ok((bi, SlaveSide::Face(named_face(cx, m, bi, name, "slave.nodes")?)));
+        }
+    }
+    let nodes = super::build::select(cx, m, bi, sel)?;
+    match super::edge_slave::edge_lengths(&m.nodes, &nodes) {
+        Ok((slaves, lengths)) => Ok((bi, SlaveSide::Edge(slaves, lengths))),
+        Err(why) => Err(cx.err(
             &c.name,
-            format!("contact `{}`: `slave.nodes` = {sel}: 3D slaves are named by a face (areas weigh the penalty)", c.name),
-            &format!("name a face of body `{b}`, e.g. nodes = \"zmin\" (a box's faces are xmin … zmax; a Gmsh mesh's physical surfaces on the boundary)"),
+            format!("contact `{}`: `slave.nodes` = {sel} is neither a face nor a straight edge: {why}", c.name),
+            &format!("name a face of body `{b}` (penalties per unit area), e.g. nodes = \"zmin\", or select nodes on one straight line, e.g. nodes = {{ x = 6.5, z = 0.0 }} (penalties per unit length)"),
         )),
     }
 }
 
-/// The face `name` of body `bi` (`key`: the scene key that names it, for the error).
+/// The face `name` of body `bi` (`key`: the scene key that names it, for the error); names
+/// joined by `+` (`"zmax+xmin"`) give the union of those faces, as one surface whose facets
+/// meet at their shared edges.
 fn named_face(cx: &Ctx, m: &Model<Solid>, bi: usize, name: &str, key: &str) -> Result<Vec<[usize; 4]>, SceneError> {
+    if name.contains('+') {
+        let mut union: Vec<[usize; 4]> = Vec::new();
+        for part in name.split('+').map(str::trim) {
+            for q in named_face(cx, m, bi, part, key)? {
+                if !union.contains(&q) {
+                    union.push(q);
+                }
+            }
+        }
+        return Ok(union);
+    }
     let b = &m.bodies[bi];
     if let Some(face) = b.faces.get(name) {
         return Ok(face.clone());
@@ -295,6 +338,7 @@ fn second_pass(
         name: format!("{}{SECOND_PASS_SUFFIX}", pair.name),
         slaves,
         areas,
+        measure: SlaveMeasure::Area,
         master: SurfaceMaster::Facets {
             body: slave_body,
             facets: slave_face,

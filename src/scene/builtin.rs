@@ -67,6 +67,10 @@ pub const BUILTINS: &[Builtin] = &[
         name: "slide-3d",
         text: include_str!("../../scenes/slide-3d.toml"),
     },
+    Builtin {
+        name: "strip-channel-3d",
+        text: include_str!("../../scenes/strip-channel-3d.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.

@@ -10,6 +10,7 @@ pub mod build_pairs;
 pub mod build_solid;
 pub mod build_surface_pairs;
 pub mod builtin;
+mod edge_slave;
 pub mod fillet;
 pub mod initial_contact;
 mod mesh;

@@ -273,7 +273,7 @@ pub struct RigidSpec {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SlaveSpec {
-    /// Nodes of a deformable body …
+    /// Nodes of a deformable body (in 3D a face, or nodes on one straight edge) …
     pub body: Option<String>,
     pub nodes: Option<NodeSelection>,
     /// … or a rigid point, …
@@ -288,7 +288,8 @@ pub struct SlaveSpec {
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MasterSpec {
-    /// A face (`bottom`, `right`, `top`, `left`) of a deformable body …
+    /// A face (`bottom`, `right`, `top`, `left`; in 3D `xmin` … `zmax` or a physical
+    /// surface, several joined by `+` as one surface: `"zmax+xmin"`) of a deformable body …
     pub body: Option<String>,
     pub face: Option<String>,
     /// … or a rigid surface.

@@ -76,9 +76,10 @@ pub(super) struct ContactCommit {
     imbalance: Option<Imbalance>,
     /// The time the commit itself took (physics, not recording).
     commit_time: std::time::Duration,
-    /// The 3D contact points, and how many crossed to another facet.
+    /// The 3D contact points, how many crossed to another facet and the trial tractions of
+    /// those a scheme other than the parallel translation carried.
     surface_points: Vec<SurfacePointRecord>,
-    surface_crossings: usize,
+    surface: crate::contact3d::system::SurfaceCommit,
 }
 
 impl<S: Dim> Stepping<'_, S> {
@@ -120,12 +121,13 @@ impl<S: Dim> Stepping<'_, S> {
             imbalance,
             commit_time,
             surface_points,
-            surface_crossings,
+            surface,
         } = self.commit_contact();
         self.check_equilibrium(imbalance)?;
         self.check_penetration(&points, obs)?;
-        self.summary.crossings += crossings.len() + surface_crossings;
+        self.summary.crossings += crossings.len() + surface.crossings;
         self.report_history_jumps(&crossings, obs)?;
+        self.report_surface_history_jumps(&surface.trials, obs)?;
         self.report_lost_histories(&surface_points, obs)?;
         let equilibrium = imbalance.map_or(0.0, |i| i.relative);
         let (conv, cutbacks, on_extension) = (done.conv, done.cutbacks, done.on_extension);
@@ -223,7 +225,7 @@ impl<S: Dim> Stepping<'_, S> {
             crate::solver::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, &surface, self.fref);
         let committing = Instant::now();
         let events = self.committed.contact.commit(&cfg);
-        let surface_crossings = self.committed.contact.surface.commit();
+        let surface = self.committed.contact.surface.commit();
         let commit_time = committing.elapsed();
         let crossings: Vec<CrossingRecord> = events.iter().map(CrossingRecord::from).collect();
         ContactCommit {
@@ -233,7 +235,7 @@ impl<S: Dim> Stepping<'_, S> {
             imbalance,
             commit_time,
             surface_points,
-            surface_crossings,
+            surface,
         }
     }
 
@@ -260,6 +262,40 @@ impl<S: Dim> Stepping<'_, S> {
                     c.from_segment,
                     c.to_segment,
                     pair.transfer.name()
+                );
+                log(obs, LogLevel::Warning, self.increment, self.t, message)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The 3D crossings at which the pair's scheme changed the friction history: its trial
+    /// traction differs from the parallel translation's by more than
+    /// [`crate::solver::run::HISTORY_JUMP`] of the larger (counted with the 2D jumps in
+    /// [`RunSummary::history_jumps`], warned at the first).
+    fn report_surface_history_jumps(
+        &mut self,
+        trials: &[crate::contact3d::system::SurfaceCrossingTrial],
+        obs: &mut dyn Observer,
+    ) -> Result<(), SolveError> {
+        for c in trials {
+            let (translated, carried) = c.trial;
+            if (carried - translated).abs() <= crate::solver::run::HISTORY_JUMP * translated.max(carried) {
+                continue;
+            }
+            self.summary.history_jumps += 1;
+            if self.summary.history_jumps == 1 {
+                let Some(solid) = S::solid(self.model) else { continue };
+                let pair = &solid.surface_contacts[c.pair];
+                let message = format!(
+                    "crossing of node {} of `{}` from facet {} to {}: the trial traction is {carried:.4e} where the parallel \
+                     translation of the history gives {translated:.4e} — the `{}` transfer does not carry the friction history \
+                     across facets, and the force history is wrong from here on (use transfer = \"continuous\"; seed Fig. 4)",
+                    pair.slaves[c.slave],
+                    pair.name,
+                    c.from_facet,
+                    c.to_facet,
+                    crate::contact3d::transfer::scheme_name(pair.transfer)
                 );
                 log(obs, LogLevel::Warning, self.increment, self.t, message)?;
             }
