@@ -29,8 +29,8 @@
 //!   area doubled, the 2D penalty being per node);
 //! - straightforward transfer under the seed's fixed steps (Δv = 0.0025, no cut-backs, to
 //!   v = 11) fails at a crossing, as in 2D and the seed's Fig. 4, after a logged trial jump of
-//!   ε_T ℓ per point (5.25e4, within 10 %); under the adaptive default it completes and warns
-//!   that the history jumped at every crossing.
+//!   ε_T ℓ per point (5.25e4, within 10 %), naming C's points that kept changing; under the
+//!   adaptive default it completes and warns that the history jumped at every crossing.
 //!
 //! Release tier (about 40 s per 3D run, 70 s on 48 elements).
 
@@ -145,9 +145,18 @@ fn straightforward_transfer_fails_at_a_crossing_under_the_seeds_steps() {
         "stepping.max_cutbacks=0",
     ];
     let (result, mem) = run_3d(&[&seed[..], &["contact.transfer=straightforward"]].concat());
-    let Some(Outcome::Failed { increment, .. }) = &mem.outcome else {
+    let Some(Outcome::Failed { increment, points, .. }) = &mem.outcome else {
         panic!("straightforward completed: {result:?}")
     };
+    // the failure names the 3D points that kept changing: C's two nodes on the strip's facets
+    let named: Vec<String> = points.iter().map(|p| p.describe()).collect();
+    println!("changing points: {named:#?}");
+    assert!(
+        points
+            .iter()
+            .any(|p| p.surface && p.pair_name == "corner" && p.xi2.is_finite()),
+        "{named:?}"
+    );
     let jump = (mem.logs.iter())
         .filter(|l| l.level == LogLevel::Warning)
         .find_map(|l| l.message.split("the trial traction is ").nth(1))

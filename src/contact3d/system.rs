@@ -375,6 +375,31 @@ impl SurfaceSystem {
     }
 }
 
+impl SurfaceSystem {
+    /// `(pair, slave)` of the `flat`-th 3D point (pairs, then slaves: the order of
+    /// [`SurfaceSystem::signature_into`]).
+    pub fn point_index(&self, flat: usize) -> Option<(usize, usize)> {
+        let mut k = flat;
+        for (ip, pts) in self.current.iter().enumerate() {
+            if k < pts.len() {
+                return Some((ip, k));
+            }
+            k -= pts.len();
+        }
+        None
+    }
+
+    /// `(ξ¹, ξ²)` of a point at the current iterate (`None`: unpaired).
+    pub fn xi(&self, pair: usize, slave: usize) -> Option<[f64; 2]> {
+        self.current[pair][slave].eval.map(|e| e.projection.point.xi)
+    }
+
+    /// The facet a point is paired with at the current iterate.
+    pub fn facet(&self, pair: usize, slave: usize) -> Option<usize> {
+        self.current[pair][slave].facet
+    }
+}
+
 /// What a converged increment's commit found: the crossings, and at those whose history a
 /// scheme other than the parallel translation carried, its trial traction against the
 /// translation's.

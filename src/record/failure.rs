@@ -96,7 +96,7 @@ pub struct ChangingPoint {
     pub pair: usize,
     pub pair_name: String,
     pub slave: usize,
-    /// `node N`, `rigid NAME` or `rigid NAME vertex K`.
+    /// `node N`, `rigid NAME` or `rigid NAME vertex K` (a 3D point: `node N`).
     pub slave_label: String,
     /// How many times its `(state, segment)` changed within the failed attempt.
     pub changes: u32,
@@ -104,9 +104,25 @@ pub struct ChangingPoint {
     pub first_change: usize,
     /// Its `(state, segment)` at the last iterates, oldest first.
     pub history: Vec<PointDecision>,
-    /// `ξ` at the last iterate (NaN when unpaired).
+    /// `ξ` at the last iterate (NaN when unpaired; `ξ¹` of a 3D point).
     #[serde(with = "Real")]
     pub xi: f64,
+    /// A 3D node-to-surface point: `pair` indexes the model's surface pairs, `slave` the
+    /// pair's slave nodes, the segment in `history` is the facet, and `xi2` is its `ξ²`.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub surface: bool,
+    /// `ξ²` of a 3D point at the last iterate (NaN, and not written, for a 2D point or an
+    /// unpaired one).
+    #[serde(with = "Real", default = "not_a_number", skip_serializing_if = "is_nan")]
+    pub xi2: f64,
+}
+
+fn not_a_number() -> f64 {
+    f64::NAN
+}
+
+fn is_nan(x: &f64) -> bool {
+    x.is_nan()
 }
 
 impl ChangingPoint {
@@ -118,9 +134,14 @@ impl ChangingPoint {
         let states: Vec<String> = (self.history.iter())
             .map(|d| format!("{:?}@{}", d.state, d.segment.map_or("-".into(), |s| s.to_string())))
             .collect();
-        let xi = match self.xi.is_finite() {
-            true => format!("ξ = {}", crate::format::plain(self.xi)),
-            false => "unpaired (no projection on its master)".to_string(),
+        let xi = match (self.xi.is_finite(), Some(self.xi2).filter(|v| v.is_finite())) {
+            (true, Some(xi2)) => format!(
+                "(ξ¹, ξ²) = ({}, {})",
+                crate::format::plain(self.xi),
+                crate::format::plain(xi2)
+            ),
+            (true, None) => format!("ξ = {}", crate::format::plain(self.xi)),
+            (false, _) => "unpaired (no projection on its master)".to_string(),
         };
         format!(
             "{} of `{}`: {} {}, the first at iteration {}; its last {} iterates: {}; {}",
@@ -178,6 +199,8 @@ mod tests {
             first_change: 2,
             history: vec![open; 3],
             xi: f64::NAN,
+            surface: false,
+            xi2: f64::NAN,
         };
         let d = p.describe();
         assert_eq!(
@@ -191,5 +214,15 @@ mod tests {
             ..p
         };
         assert!(one.describe().contains("1 change, the first") && one.describe().ends_with("ξ = 0.5"));
+        let on_facet = ChangingPoint {
+            surface: true,
+            xi2: -0.25,
+            ..one
+        };
+        assert!(
+            on_facet.describe().ends_with("(ξ¹, ξ²) = (0.5, -0.25)"),
+            "{}",
+            on_facet.describe()
+        );
     }
 }

@@ -118,10 +118,17 @@ impl ActiveSetWatch {
 
     /// The points that changed in this attempt, those still changing at the end first, then
     /// the most changes (at most `max`): the points to blame are the ones that never settled.
-    pub fn report(&self, contact: &ContactSystem, model: &crate::model::Model, max: usize) -> Vec<ChangingPoint> {
-        // the 2D points (3D points are counted in the cycle test, not named here yet)
+    /// 2D points are named from `model`, 3D ones (after the 2D ones in the watch) from
+    /// `solid`.
+    pub fn report(
+        &self,
+        contact: &ContactSystem,
+        model: &crate::model::Model,
+        solid: Option<&crate::model::Model<crate::model::Solid>>,
+        max: usize,
+    ) -> Vec<ChangingPoint> {
         let plane = contact.plane_len().min(self.now.len());
-        let mut idx: Vec<usize> = (0..plane).filter(|&i| self.changes[i] > 0).collect();
+        let mut idx: Vec<usize> = (0..self.now.len()).filter(|&i| self.changes[i] > 0).collect();
         idx.sort_by_key(|&i| {
             (
                 std::cmp::Reverse(self.last_change[i]),
@@ -130,30 +137,71 @@ impl ActiveSetWatch {
         });
         idx.truncate(max);
         let kept = self.filled.min(KEEP);
+        let history = |i: usize| -> Vec<PointDecision> {
+            (self.filled - kept..self.filled)
+                .map(|k| {
+                    let d = self.ring[k % KEEP][i];
+                    PointDecision {
+                        state: d.state,
+                        segment: d.segment,
+                    }
+                })
+                .collect()
+        };
         idx.into_iter()
-            .map(|i| {
-                let (ip, is) = contact.point_index(i);
-                let pair = &model.contacts[ip];
-                let history = (self.filled - kept..self.filled)
-                    .map(|k| {
-                        let d = self.ring[k % KEEP][i];
-                        PointDecision {
-                            state: d.state,
-                            segment: d.segment,
-                        }
-                    })
-                    .collect();
-                ChangingPoint {
-                    pair: ip,
-                    pair_name: pair.name.clone(),
-                    slave: is,
-                    slave_label: model.slave_label(pair.slaves[is]),
+            .filter_map(|i| {
+                let named = match i < plane {
+                    true => plane_point(contact, model, i),
+                    false => surface_point(contact, solid?, i - plane)?,
+                };
+                Some(ChangingPoint {
                     changes: self.changes[i],
                     first_change: self.first_change[i],
-                    history,
-                    xi: contact.xi(i),
-                }
+                    history: history(i),
+                    ..named
+                })
             })
             .collect()
     }
+}
+
+/// A 2D point's names and `ξ` (its changes and history filled in by the caller).
+fn plane_point(contact: &ContactSystem, model: &crate::model::Model, flat: usize) -> ChangingPoint {
+    let (ip, is) = contact.point_index(flat);
+    let pair = &model.contacts[ip];
+    ChangingPoint {
+        pair: ip,
+        pair_name: pair.name.clone(),
+        slave: is,
+        slave_label: model.slave_label(pair.slaves[is]),
+        changes: 0,
+        first_change: 0,
+        history: Vec::new(),
+        xi: contact.xi(flat),
+        surface: false,
+        xi2: f64::NAN,
+    }
+}
+
+/// A 3D point's names and `(ξ¹, ξ²)` (`None` if the watch holds more points than the model).
+fn surface_point(
+    contact: &ContactSystem,
+    solid: &crate::model::Model<crate::model::Solid>,
+    flat: usize,
+) -> Option<ChangingPoint> {
+    let (ip, is) = contact.surface.point_index(flat)?;
+    let pair = solid.surface_contacts.get(ip)?;
+    let xi = contact.surface.xi(ip, is);
+    Some(ChangingPoint {
+        pair: ip,
+        pair_name: pair.name.clone(),
+        slave: is,
+        slave_label: format!("node {}", pair.slaves[is]),
+        changes: 0,
+        first_change: 0,
+        history: Vec::new(),
+        xi: xi.map_or(f64::NAN, |x| x[0]),
+        surface: true,
+        xi2: xi.map_or(f64::NAN, |x| x[1]),
+    })
 }

@@ -15,7 +15,8 @@ use crate::record::ChangingPoint;
 /// of a faceted deformable master (`Smoothing::None`): one sentence to append to the
 /// failure's reason, or `None`.
 pub fn faceted_node(model: &Model, points: &[ChangingPoint]) -> Option<String> {
-    let p = points.iter().find(|p| {
+    // 3D points (`surface`) index the surface pairs, whose facets this diagnosis is not for
+    let p = points.iter().filter(|p| !p.surface).find(|p| {
         let pair = &model.contacts[p.pair];
         let faceted = matches!(pair.master, Master::Face { .. }) && pair.face_smoothing() == Smoothing::None;
         // at the node: within the band about a segment's end where the pairing already holds

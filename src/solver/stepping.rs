@@ -49,7 +49,7 @@ fn diagnose_tangent<S: Dim>(
     t: f64,
     points: &[ChangingPoint],
 ) -> String {
-    let nodes = super::tangent_check::nodes_of_points(model.plane(), &trial.contact, points);
+    let nodes = super::tangent_check::nodes_of_points(model.plane(), S::solid(model), &trial.contact, points);
     match super::tangent_check::check_tangent(model, asm, trial, t, &nodes) {
         Ok(c) => format!("at the last iterate: {}", c.summary()),
         Err(e) => format!("at the last iterate: tangent check not possible ({e})"),
@@ -312,12 +312,12 @@ impl<'a, S: Dim> Stepping<'a, S> {
             TangentCheckWhen::EveryFailedAttempt => true,
         };
         if check {
-            let points = self.ws.watch.report(&trial.contact, model.plane(), 8);
+            let points = self.ws.watch.report(&trial.contact, model.plane(), S::solid(model), 8);
             let message = diagnose_tangent(model, &mut self.asm, trial, t_new, &points);
             log(obs, LogLevel::Warning, increment, t_new, message)?;
         }
         if last {
-            let points = self.ws.watch.report(&trial.contact, model.plane(), 8);
+            let points = self.ws.watch.report(&trial.contact, model.plane(), S::solid(model), 8);
             return Err(SolveError::StepFailed {
                 increment,
                 t: t_new,

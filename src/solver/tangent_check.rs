@@ -189,16 +189,27 @@ fn compare(d: usize, k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> C
 }
 
 /// The nodes a list of contact points couples at the current iterate: slave nodes and the
-/// nodes of the deformable master segments they are paired with (the columns worth checking
-/// in a large model).
+/// nodes of the deformable master segments (3D: facets) they are paired with (the columns
+/// worth checking in a large model).
 pub fn nodes_of_points(
     model: &Model,
+    solid: Option<&Model<crate::model::Solid>>,
     contact: &crate::contact::system::ContactSystem,
     points: &[crate::record::ChangingPoint],
 ) -> Vec<usize> {
     use crate::model::{Master, Slave};
     let mut nodes = Vec::new();
     for p in points {
+        if p.surface {
+            if let (Some(solid), Some(facet)) = (solid, contact.surface.facet(p.pair, p.slave)) {
+                let pair = &solid.surface_contacts[p.pair];
+                nodes.push(pair.slaves[p.slave]);
+                if let crate::model::SurfaceMaster::Facets { facets, .. } = &pair.master {
+                    nodes.extend(facets[facet]);
+                }
+            }
+            continue;
+        }
         let pair = &model.contacts[p.pair];
         if let Slave::Node(n) = pair.slaves[p.slave] {
             nodes.push(n);
