@@ -80,3 +80,24 @@ fn stiff_penalty_is_not_reported() {
         );
     }
 }
+
+/// In 3D too: the small sliding block (`tests/data/slide-3d-small.toml`, element edge 0.5)
+/// pressed 0.2 into the slab with ε_N = 10 per unit area (a hundredth of E) sinks most of the
+/// 0.2 (beyond 0.1 of its edge: reported, naming the pair); at the scene's own ε_N = 1e6 and
+/// 0.01 it is not.
+#[test]
+fn a_soft_penalty_in_3d_is_reported_as_deep_penetration() {
+    const SLIDE: &str = include_str!("data/slide-3d-small.toml");
+    let soft = SLIDE
+        .replace("eps_n = 1.0e6", "eps_n = 10.0")
+        .replace("[1.0, -0.01], [2.0, -0.01]", "[1.0, -0.2], [2.0, -0.2]");
+    let (_, summary, _) = common::solve_solid_text("soft-slide.toml", &format!("{soft}increments = 4\n"));
+    let deep = summary.deep_penetration.expect("reported");
+    println!(
+        "3D, ε_N = 10: {} sinks {:.3e}, {:.2} of its element edge",
+        deep.slave, deep.depth, deep.ratio
+    );
+    assert!(deep.ratio > DEEP_PENETRATION && deep.pair == "base", "{deep:?}");
+    let (_, stiff, _) = common::solve_solid_text("slide.toml", &format!("{SLIDE}increments = 4\n"));
+    assert!(stiff.deep_penetration.is_none(), "{:?}", stiff.deep_penetration);
+}

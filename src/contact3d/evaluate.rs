@@ -55,8 +55,9 @@ pub fn evaluate_point(
 /// Slave `is` against the facets of a deformable face: located (from `start`), its history
 /// carried onto the facet it is on now, evaluated on its 5 nodes. A point whose contact
 /// point lies past the face's free border (`borders`) is not paired ([`past_free_border`]),
-/// unless it was closed on that facet at the last converged increment and is still
-/// penetrating, within [`FREE_BORDER_HOLD`] of the border.
+/// unless it was closed on the face at the last converged increment and is still
+/// penetrating, within [`FREE_BORDER_HOLD`] of the border — on that facet or the next one
+/// along the border (a point sliding along the free border crosses facets there).
 fn on_facets(
     cfg: &SurfaceConfig,
     (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
@@ -101,7 +102,7 @@ fn on_facets(
         return out;
     };
     let past = past_free_border(e.projection.point.xi, borders[f]);
-    let held = hist.closed && hist.facet == Some(f) && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
+    let held = hist.closed && hist.facet.is_some() && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
     if past > INSIDE_TOLERANCE && !held {
         return Evaluated::unpaired();
     }

@@ -23,6 +23,10 @@ use thiserror::Error;
 /// Half-width of the box of the facet's bilinear extension that Newton may search.
 pub const XI_BOX: f64 = 4.0;
 
+/// A Newton step below this that does not halve the one before is round-off: the projection
+/// has converged as far as the arithmetic allows (the two steps in the scalar type follow).
+pub const ROUNDOFF_STEP: f64 = 1e-9;
+
 /// `|ξ^α| ≤ 1 + INSIDE_TOLERANCE` counts as inside.
 pub const INSIDE_TOLERANCE: f64 = 1e-12;
 
@@ -144,6 +148,7 @@ fn real_newton<S: Scalar>(
     real.point(opts.start)?;
     let mut xi = opts.start;
     let mut last = f64::INFINITY;
+    let mut previous = f64::INFINITY;
     for it in 1..=opts.max_iterations {
         let not_converged = ProjectionError::NotConverged {
             xi,
@@ -165,9 +170,12 @@ fn real_newton<S: Scalar>(
                 step: len,
             });
         }
-        if len <= opts.tolerance {
+        // at the tolerance, or at round-off: a small step that no longer halves (on a long,
+        // narrow facet the narrow direction's `ξ` is resolved only to `ε |r_s − ρ| / |ρ_α|`)
+        if len <= opts.tolerance || (len <= ROUNDOFF_STEP && len > 0.5 * previous) {
             return Ok((xi, it));
         }
+        previous = len;
     }
     Err(ProjectionError::NotConverged {
         xi,

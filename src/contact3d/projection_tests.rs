@@ -151,3 +151,25 @@ fn projection_on_a_parallelogram_is_explicit() {
     assert!((q.gap - dot(d, n) / norm(n)).abs() < 1e-14);
     assert!(q.iterations <= 3, "{}", q.iterations);
 }
+
+/// A long, narrow facet (the wall of a block one strip-width wide: 40 × 0.05, aspect 800) and
+/// points off it by 6.5 along its normal: the narrow direction's `ξ` is resolved only to
+/// `ε |r_s − ρ| / |ρ_2|` ≈ 1e-13, above the tolerance 1e-14. The projection converges at
+/// round-off (a step that no longer halves below 1e-9) to the exact point: `ξ` to 1e-10,
+/// the gap to 1e-12 relative. Before that rule it failed as not converged at some heights,
+/// and the pairing fell back to a neighbour facet's extension with a false deep penetration.
+#[test]
+fn a_long_narrow_facet_projects_at_round_off() {
+    let wall = Facet::<f64> {
+        x: [[6.5, 0.0, -40.0], [6.5, 0.0, 0.0], [6.5, 0.05, 0.0], [6.5, 0.05, -40.0]],
+    };
+    for k in 0..200 {
+        let z = -0.05 - 0.0325 * k as f64;
+        for y in [0.0, 0.0123, 0.05] {
+            let p = project(&wall, [0.0, y, z]).unwrap_or_else(|e| panic!("z = {z}, y = {y}: {e}"));
+            let exact = [(z + 20.0) / 20.0, y / 0.025 - 1.0];
+            assert!((p.point.xi[0] - exact[0]).abs() < 1e-10 && (p.point.xi[1] - exact[1]).abs() < 1e-10);
+            assert!((p.gap.abs() - 6.5).abs() < 1e-12 * 6.5, "{}", p.gap);
+        }
+    }
+}

@@ -65,7 +65,7 @@ pub fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> [[f64; 3]; 2]
 }
 
 /// How far past a free border (in `ξ`: 0.05 % of the facet's width) a point closed on the
-/// facet at the last converged increment, and still penetrating, stays paired with it (the
+/// face at the last converged increment, and still penetrating, stays paired with it (the
 /// 2D rule of `contact::pairing::FREE_END_HOLD`): two faces meshed edge to edge keep their
 /// border nodes at `ξ = ±1` only to the strain's mismatch.
 pub const FREE_BORDER_HOLD: f64 = 1e-3;

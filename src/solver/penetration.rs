@@ -7,10 +7,14 @@
 //! half the force of the converged answer while its friction ratio was still right), and
 //! nothing else in the run says so. At every converged increment the deepest closed point
 //! is compared with the smallest element edge at its slave node (for a rigid slave point,
-//! with the length of the master segment it presses on); beyond
+//! with the length of the master segment it presses on; a 3D point with the smallest
+//! hexahedron edge at its slave node); beyond
 //! [`DEEP_PENETRATION`] the run warns once, naming the pair, the point and the remedy.
 
-use crate::model::{Model, Slave};
+use crate::contact::law::ContactState;
+use crate::model::dim::HEX8_EDGES;
+use crate::model::{Model, Slave, Solid};
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::ContactPointRecord;
 
 /// Penetration, as a share of the local element size, beyond which a run warns.
@@ -51,6 +55,39 @@ pub fn deepest(model: &Model, sizes: &[f64], points: &[ContactPointRecord]) -> O
             worst = Some(Penetration {
                 pair: p.pair_name.to_string(),
                 slave: p.slave_label.to_string(),
+                depth,
+                ratio,
+            });
+        }
+    }
+    worst
+}
+
+/// The smallest hexahedron edge at each node of a 3D model (infinite at a node of no element).
+pub fn solid_node_sizes(model: &Model<Solid>) -> Vec<f64> {
+    let mut h = vec![f64::INFINITY; model.nodes.len()];
+    for e in &model.elements {
+        for [a, b] in HEX8_EDGES.map(|[i, j]| [e.nodes[i], e.nodes[j]]) {
+            let (p, q) = (model.nodes[a], model.nodes[b]);
+            let l = (0..3).map(|c| (p[c] - q[c]).powi(2)).sum::<f64>().sqrt();
+            h[a] = h[a].min(l);
+            h[b] = h[b].min(l);
+        }
+    }
+    h
+}
+
+/// The closed 3D point whose penetration is the largest share of the smallest element edge
+/// at its slave node (`sizes` of [`solid_node_sizes`]).
+pub fn deepest_surface(sizes: &[f64], points: &[SurfacePointRecord]) -> Option<Penetration> {
+    let mut worst: Option<Penetration> = None;
+    for p in points.iter().filter(|p| p.state != ContactState::Open) {
+        let depth = -p.gap;
+        let ratio = depth / sizes.get(p.node).copied().unwrap_or(f64::INFINITY);
+        if depth > 0.0 && ratio.is_finite() && worst.as_ref().is_none_or(|w| ratio > w.ratio) {
+            worst = Some(Penetration {
+                pair: p.pair_name.clone(),
+                slave: format!("node {}", p.node),
                 depth,
                 ratio,
             });

@@ -164,7 +164,10 @@ impl<'a, S: Dim> Stepping<'a, S> {
             last_dt: None,
             recording: std::time::Duration::ZERO,
             unstable_count: 0,
-            node_sizes: super::penetration::node_sizes(model.plane()),
+            node_sizes: match S::solid(model) {
+                Some(solid) => super::penetration::solid_node_sizes(solid),
+                None => super::penetration::node_sizes(model.plane()),
+            },
         }
     }
 

@@ -124,7 +124,7 @@ impl<S: Dim> Stepping<'_, S> {
             surface,
         } = self.commit_contact();
         self.check_equilibrium(imbalance)?;
-        self.check_penetration(&points, obs)?;
+        self.check_penetration(&points, &surface_points, obs)?;
         self.summary.crossings += crossings.len() + surface.crossings;
         self.report_history_jumps(&crossings, obs)?;
         self.report_surface_history_jumps(&surface.trials, obs)?;
@@ -329,9 +329,18 @@ impl<S: Dim> Stepping<'_, S> {
         Ok(())
     }
 
-    fn check_penetration(&mut self, points: &[ContactPointRecord], obs: &mut dyn Observer) -> Result<(), SolveError> {
-        use crate::solver::penetration::{deepest, warning, DEEP_PENETRATION};
-        let Some(p) = deepest(self.model.plane(), &self.node_sizes, points) else {
+    fn check_penetration(
+        &mut self,
+        points: &[ContactPointRecord],
+        surface: &[SurfacePointRecord],
+        obs: &mut dyn Observer,
+    ) -> Result<(), SolveError> {
+        use crate::solver::penetration::{deepest, deepest_surface, warning, DEEP_PENETRATION};
+        let (plane, solid) = match S::solid(self.model) {
+            Some(_) => (None, deepest_surface(&self.node_sizes, surface)),
+            None => (deepest(self.model.plane(), &self.node_sizes, points), None),
+        };
+        let Some(p) = plane.or(solid) else {
             return Ok(());
         };
         if p.ratio <= DEEP_PENETRATION {
