@@ -32,7 +32,7 @@
 //!   ε_T ℓ per point (5.25e4, within 10 %), naming C's points that kept changing; under the
 //!   adaptive default it completes and warns that the history jumped at every crossing.
 //!
-//! Release tier (about 40 s per 3D run, 70 s on 48 elements).
+//! Release tier (about 40 s per 3D run, 78 s on 48 elements).
 
 mod common;
 

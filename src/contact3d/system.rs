@@ -341,35 +341,32 @@ impl SurfaceSystem {
     /// (points closed before and now, on another facet).
     pub fn commit(&mut self) -> SurfaceCommit {
         let mut out = SurfaceCommit::default();
-        let slaves: Vec<(usize, usize)> = (self.committed.iter().enumerate())
-            .flat_map(|(p, v)| (0..v.len()).map(move |s| (p, s)))
-            .collect();
-        let points = self.committed.iter_mut().flatten().zip(self.current.iter().flatten());
-        for ((hist, now), &(pair, slave)) in points.zip(&slaves) {
-            let closed = now.eval.is_some_and(|e| e.state != ContactState::Open);
-            let crossing = closed && hist.closed && hist.facet != now.facet;
-            out.crossings += usize::from(crossing);
-            if let (true, Some(trial), Some(carried)) = (crossing, now.trial_jump, now.carried) {
-                out.trials.push(SurfaceCrossingTrial {
-                    pair,
-                    slave,
-                    from_facet: carried.from_facet,
-                    to_facet: now.facet.unwrap_or(usize::MAX),
-                    trial,
-                });
-            }
-            *hist = SurfaceHistory {
-                facet: now.facet,
-                closed,
-                history: now.eval.as_ref().and_then(super::point::PointProblem::next_history),
-                forces: now
-                    .eval
-                    .filter(|_| closed)
-                    .map_or(SurfaceForces::default(), |e| SurfaceForces {
+        for (pair, (hists, nows)) in self.committed.iter_mut().zip(&self.current).enumerate() {
+            for (slave, (hist, now)) in hists.iter_mut().zip(nows).enumerate() {
+                let closed = now.eval.is_some_and(|e| e.state != ContactState::Open);
+                let crossing = closed && hist.closed && hist.facet != now.facet;
+                out.crossings += usize::from(crossing);
+                if let (true, Some(trial), Some(carried), Some(to_facet)) =
+                    (crossing, now.trial_jump, now.carried, now.facet)
+                {
+                    out.trials.push(SurfaceCrossingTrial {
+                        pair,
+                        slave,
+                        from_facet: carried.from_facet,
+                        to_facet,
+                        trial,
+                    });
+                }
+                *hist = SurfaceHistory {
+                    facet: now.facet,
+                    closed,
+                    history: now.eval.as_ref().and_then(super::point::PointProblem::next_history),
+                    forces: (now.eval.filter(|_| closed)).map_or(SurfaceForces::default(), |e| SurfaceForces {
                         normal: e.normal_force,
                         tangential: e.projection.point.vector(e.traction),
                     }),
-            };
+                };
+            }
         }
         out
     }

@@ -32,8 +32,8 @@ const EAS_NEAR: f64 = 1e-6;
 /// enhanced interpolation `Ẽ = G α`.
 pub(crate) struct PassPoint<'a, const N: usize> {
     pub dv: f64,
-    pub b: SMatrix<f64, 6, 24>,
-    pub e: Vector6<f64>,
+    pub b: &'a SMatrix<f64, 6, 24>,
+    pub e: &'a Vector6<f64>,
     pub g: &'a SMatrix<f64, 6, N>,
 }
 
@@ -129,7 +129,7 @@ fn gauss_pass<const N: usize>(
     };
     for (q, p) in el.points.iter().enumerate() {
         let dv = p.dv;
-        let e = if eas { p.e + p.g * al } else { p.e };
+        let e = if eas { p.e + p.g * al } else { *p.e };
         let (s, d) = material.stress_tangent_3d(&e)?;
         if eas {
             let dg = (d * p.g) * dv;
@@ -145,7 +145,7 @@ fn gauss_pass<const N: usize>(
         t.energy += material.energy_3d(&e)? * dv;
         t.ru += p.b.tr_mul(&s) * dv;
         if want_k {
-            add_upper_tr_mul(&mut t.kuu, &p.b, &((d * p.b) * dv));
+            add_upper_tr_mul(&mut t.kuu, p.b, &((d * p.b) * dv));
             (el.geometric)(q, &s, dv, &mut t.kuu);
         }
     }
@@ -231,8 +231,8 @@ pub fn hex8_residual_tangent_with(
     let el = EnhancedElement {
         points: std::array::from_fn(|q| PassPoint {
             dv: geo.gp[q].dv,
-            b: kin[q].b,
-            e: kin[q].ec,
+            b: &kin[q].b,
+            e: &kin[q].ec,
             g: &geo.gp[q].g,
         }),
         penalty: &geo.penalty,

@@ -209,8 +209,8 @@ pub(super) fn residual_tangent(
     let el = EnhancedElement {
         points: std::array::from_fn(|q| PassPoint {
             dv: a.points[q].0,
-            b: a.points[q].1,
-            e: a.points[q].2,
+            b: &a.points[q].1,
+            e: &a.points[q].2,
             g: &g[q],
         }),
         penalty: &penalty,
