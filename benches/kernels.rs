@@ -4,12 +4,16 @@
 //!   `α` of the last evaluation is the starting guess);
 //! * the contact-point kernel (residual and tangent by second-order dual numbers): a slave
 //!   node on a face segment that it reached from the neighbouring segment (4 node slots,
-//!   8 DOFs), in stick and in slip, for each history-transfer scheme.
+//!   8 DOFs), in stick and in slip, for each history-transfer scheme;
+//! * the 3D node-to-surface kernel (residual and tangent by first-order dual numbers and the
+//!   closed-form variations, 15 DOFs): a slave node penetrating a warped bilinear facet with
+//!   a friction history, in stick and in slip, and the residual alone.
 //!
 //! Run: `cargo bench --bench kernels` (figures in docs/performance.md).
 
 use contrail::contact::point::{Closed, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use contrail::contact::transfer::StoredTraction;
+use contrail::contact3d::point::{History, PointProblem as PointProblem3, DOFS as DOFS3};
 use contrail::element::material::{lame, Material};
 use contrail::element::quad::{quad_residual_tangent_with, ElementKind, QuadGeometry};
 use contrail::model::contact::{ContactLaw, TransferKind};
@@ -87,6 +91,46 @@ fn bench(c: &mut Criterion) {
         }
     }
     g.finish();
+
+    let mut g = c.benchmark_group("contact-point-3d");
+    for (state, mu) in [("stick", 1e3), ("slip", 0.05)] {
+        let p = surface_point(mu);
+        let (mut r, mut k) = ([0.0; DOFS3], [0.0; DOFS3 * DOFS3]);
+        g.bench_function(format!("{state}/residual+tangent"), |b| {
+            b.iter(|| black_box(black_box(&p).residual_tangent(&mut r, &mut k)))
+        });
+        g.bench_function(format!("{state}/residual"), |b| {
+            b.iter(|| black_box(black_box(&p).residual(&mut r)))
+        });
+    }
+    g.finish();
+}
+
+/// A slave 0.01 into a warped facet above `ξ = (0.2, −0.3)`, with the history of a point
+/// that was at `ξ = (0.1, −0.25)` carrying a traction (stick for a large `μ`, slip for a
+/// small one).
+fn surface_point(mu: f64) -> PointProblem3 {
+    use contrail::contact3d::surface::Facet;
+    let facet = [
+        [-1.0, -1.1, 0.05],
+        [1.2, -0.9, -0.1],
+        [0.9, 1.0, 0.2],
+        [-1.1, 0.8, -0.05],
+    ];
+    let p = Facet::<f64> { x: facet }.point([0.2, -0.3]).unwrap();
+    let slave = std::array::from_fn(|c| p.rho[c] - 0.01 * p.normal[c]);
+    let law = ContactLaw {
+        eps_n: 2.1e3,
+        eps_t: 1.7e3,
+        mu,
+    };
+    PointProblem3 {
+        history: Some(History {
+            xi: [0.1, -0.25],
+            traction: [0.4, -0.2],
+        }),
+        ..PointProblem3::new(law, [slave, facet[0], facet[1], facet[2], facet[3]])
+    }
 }
 
 /// Slot 0 the slave (penetrating), 1–2 the current segment B, 3 the far node of the segment A

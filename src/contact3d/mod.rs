@@ -29,6 +29,7 @@ pub mod surface;
 pub mod system;
 pub mod transfer;
 pub mod unknowns;
+pub mod variations;
 pub mod vec3;
 
 #[cfg(test)]

@@ -22,9 +22,10 @@
 //! Virtual work `δW = −N δζ − T_α δξ^α`, so the residual (internal force) is
 //! `r = −N ∇ζ − T_α ∇ξ^α` and the tangent
 //! `K = −∇ζ ∇Nᵀ − N ∇²ζ − Σ_α (∇ξ^α ∇T_αᵀ + T_α ∇²ξ^α)`, `∇` over the 15 DOFs. `ζ`, `ξ^α`,
-//! `N` and `T_α` are evaluated in second-order dual numbers (`Dual2SVec64<15>`, on the
-//! stack), which gives `δζ`, `δξ^α` (including the curvature terms of a warped facet) and
-//! their linearisations exactly; the unsymmetric friction blocks come from `∇T_α`. At the
+//! `N` and `T_α` are evaluated in first-order dual numbers (`DualSVec64<15>`, on the stack);
+//! `∇ζ` and `∇ξ^α` are the closed forms of [`super::variations`], whose dual parts give
+//! `∇²ζ` and `∇²ξ^α` exactly (including the curvature terms of a warped facet), so no
+//! second-order arithmetic is needed; the unsymmetric friction blocks come from `∇T_α`. At the
 //! closest point `∇_s ζ = n`, `∇_s ξ^α = (a − ζ h)^{-1, αβ} ρ_β`, so the force on the slave is
 //! `−r_s = N n + T_α ∇_s ξ^α` (`= N n + T_α ρ^α` on a flat facet): `T` acts on the slave.
 //! The history is data (not differentiated).
@@ -32,11 +33,12 @@
 use super::decision::{self, SurfaceRule};
 use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
 use super::surface::{Facet, FacetPoint};
+use super::variations::variations;
 use super::vec3::{Scalar, V3};
 use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
 use nalgebra::{Const, U1};
-use num_dual::{Dual2SVec64, DualSVec64};
+use num_dual::DualSVec64;
 
 /// A gap within `TOUCH` times the facet's size of zero is touching: the point is closed.
 /// The active set of a penalty method is `ζ ≤ 0` (Wriggers, Computational Contact Mechanics,
@@ -216,23 +218,19 @@ impl PointProblem {
         self.evaluate(&self.x)
     }
 
-    /// The residual `r = −N ∇ζ − T_α ∇ξ^α` alone (first-order duals).
+    /// The residual `r = −N ∇ζ − T_α ∇ξ^α` alone: a plain evaluation and the closed-form
+    /// variations ([`super::variations`]).
     pub fn residual(&self, r: &mut [f64; DOFS]) -> Result<PointEval<f64>, ProjectionError> {
-        let q: [V3<DualSVec64<DOFS>>; NODES] = std::array::from_fn(|i| {
-            std::array::from_fn(|c| DualSVec64::<DOFS>::from_re(self.x[i][c]).derivative(3 * i + c))
-        });
-        let e = self.evaluate(&q)?;
+        let e = self.evaluate_f64()?;
         r.fill(0.0);
         if e.state != ContactState::Open {
-            let grad = |s: &DualSVec64<DOFS>| s.eps.unwrap_generic(Const::<DOFS>, U1);
-            let gz = grad(&e.projection.gap);
-            let gx = [grad(&e.projection.point.xi[0]), grad(&e.projection.point.xi[1])];
-            let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
-            for i in 0..DOFS {
-                r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
+            let var = variations(&e.projection);
+            let (n, t) = (e.normal_force, e.traction);
+            for (i, ri) in r.iter_mut().enumerate() {
+                *ri = -n * var.gap[i] - t[0] * var.xi[0][i] - t[1] * var.xi[1][i];
             }
         }
-        Ok(real_parts(&e))
+        Ok(e)
     }
 
     /// Residual `r` and consistent tangent `k = ∂r/∂x` (row-major, `k[DOFS i + j]`) under the
@@ -266,7 +264,7 @@ impl PointProblem {
         k: &mut [f64; DOFS * DOFS],
         lin: &mut SurfaceLinearization,
     ) -> Result<PointEval<f64>, ProjectionError> {
-        type D = Dual2SVec64<DOFS>;
+        type D = DualSVec64<DOFS>;
         let q: [V3<D>; NODES] =
             std::array::from_fn(|i| std::array::from_fn(|c| D::from_re(self.x[i][c]).derivative(3 * i + c)));
         let e = self.evaluate(&q)?;
@@ -274,11 +272,14 @@ impl PointProblem {
         r_eq.fill(0.0);
         k.fill(0.0);
         *lin = SurfaceLinearization::default();
-        let grad = |s: &D| s.v1.unwrap_generic(U1, Const::<DOFS>);
-        let hess = |s: &D| s.v2.unwrap_generic(Const::<DOFS>, Const::<DOFS>);
-        let (zeta, xi) = (&e.projection.gap, &e.projection.point.xi);
-        let gz = grad(zeta);
-        let gx = [grad(&xi[0]), grad(&xi[1])];
+        let grad = |s: &D| -> [f64; DOFS] {
+            let g = s.eps.unwrap_generic(Const::<DOFS>, U1);
+            std::array::from_fn(|j| g[j])
+        };
+        // ∇ζ, ∇ξ^α in closed form; their dual parts are ∇²ζ, ∇²ξ^α
+        let var = variations(&e.projection);
+        let gz: [f64; DOFS] = var.gap.map(|s| s.re);
+        let gx: [[f64; DOFS]; 2] = var.xi.map(|g| g.map(|s| s.re));
         let (n_bar, t_bar) = match self.rule.forces() {
             Some(f) => (f.normal, real_point(&e.projection.point).covariant(f.tangential)),
             None => (e.normal_force.re, e.traction.map(|v| v.re)),
@@ -291,8 +292,8 @@ impl PointProblem {
             // terms are left out of the Newton matrix, as in 2D
             return Ok(real_parts(&e));
         }
-        let hz = hess(zeta);
-        let hx = [hess(&xi[0]), hess(&xi[1])];
+        let hz: [[f64; DOFS]; DOFS] = var.gap.map(|s| grad(&s));
+        let hx: [[[f64; DOFS]; DOFS]; 2] = var.xi.map(|g| g.map(|s| grad(&s)));
         let gn = grad(&e.normal_force);
         let gt = [grad(&e.traction[0]), grad(&e.traction[1])];
         let (n, t) = (e.normal_force.re, e.traction.map(|v| v.re));
@@ -300,9 +301,9 @@ impl PointProblem {
             r[i] = -n * gz[i] - t[0] * gx[0][i] - t[1] * gx[1][i];
             for j in 0..DOFS {
                 k[DOFS * i + j] = -gz[i] * gn[j]
-                    - n_bar * hz[(i, j)]
-                    - (gx[0][i] * gt[0][j] + t_bar[0] * hx[0][(i, j)])
-                    - (gx[1][i] * gt[1][j] + t_bar[1] * hx[1][(i, j)]);
+                    - n_bar * hz[i][j]
+                    - (gx[0][i] * gt[0][j] + t_bar[0] * hx[0][i][j])
+                    - (gx[1][i] * gt[1][j] + t_bar[1] * hx[1][i][j]);
             }
         }
         let tangential = e.projection.point.vector(e.traction);
@@ -321,11 +322,9 @@ impl PointProblem {
         }
         lin.normal = n;
         lin.tangential = tangential.map(|c| c.re);
-        for j in 0..DOFS {
-            lin.d_normal[j] = gn[j];
-            for (c, v) in tangential.iter().enumerate() {
-                lin.d_tangential[c][j] = grad(v)[j];
-            }
+        lin.d_normal = gn;
+        for (c, v) in tangential.iter().enumerate() {
+            lin.d_tangential[c] = grad(v);
         }
         Ok(real_parts(&e))
     }
