@@ -87,6 +87,18 @@ fn check_advises_the_plane_or_axisymmetric_model_of_a_3d_scene() {
     assert!(o.status.success() && !text(&o).0.contains("advice"), "{}", text(&o).0);
     let o = contrail(&["check", "hertz-3d"]);
     assert!(o.status.success() && !text(&o).0.contains("advice"));
+    // a rigid cylinder along the extrusion: the plane-strain model; the block with free ends
+    // along it, or the cylinder turned off the axis, is told nothing
+    let cyl = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cylinder-slice-3d.toml");
+    let out = text(&contrail(&["check", s(&cyl)])).0;
+    assert!(
+        out.contains("a plane-strain model of the section would do, with about 2542 DOFs instead of 7626"),
+        "{out}"
+    );
+    for set in ["fix.2.nodes=ymin", "rigid.0.cylinder.axis=[0.1, 1.0, 0.0]"] {
+        let out = text(&contrail(&["check", s(&cyl), "--set", set])).0;
+        assert!(out.contains(": ok —") && !out.contains("advice"), "{set}: {out}");
+    }
     // the quarter of a disc between plates: an axisymmetric model would do
     let disc = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/disc-3d.toml");
     let out = text(&contrail(&["check", s(&disc)])).0;

@@ -201,6 +201,16 @@ fn rigid_shapes_of_the_wrong_dimension_are_refused_naming_the_key() {
         &with("sphere = { centre = [0.0, 0.0, 2.0], radius = 0.0 }"),
         &["rigid.tool.sphere.radius", "> 0"],
     );
+    refused(
+        &with("cylinder = { point = [0.0, 0.0, 2.0], axis = [0.0, 0.0, 0.0], radius = 1.0 }"),
+        &["rigid.tool.cylinder.axis", "zero"],
+    );
+    refused(
+        &with("cylinder = { point = [0.0, 0.0, 2.0], axis = [0.0, 1.0, 0.0], radius = -1.0 }"),
+        &["rigid.tool.cylinder.radius", "> 0"],
+    );
+    let two = "sphere = { centre = [0.0, 0.0, 2.0], radius = 1.0 }\ncylinder = { point = [0.0, 0.0, 2.0], axis = [0.0, 1.0, 0.0], radius = 1.0 }";
+    refused(&with(two), &["`sphere`", "`cylinder`", "one shape"]);
     // 3D keys in a 2D scene
     let flat = r#"
 name = "flat"
@@ -219,6 +229,10 @@ name = "floor"
     refused(
         &format!("{flat}sphere = {{ centre = [0.0, 0.0, 0.0], radius = 1.0 }}"),
         &["`sphere`", msg],
+    );
+    refused(
+        &format!("{flat}cylinder = {{ point = [0.0, 0.0, 0.0], axis = [0.0, 1.0, 0.0], radius = 1.0 }}"),
+        &["`cylinder`", msg, "`arc`"],
     );
     refused(
         &format!("{flat}polyline = [[1.0, -0.1], [0.0, -0.1]]\nmove = {{ z = 1.0 }}"),
@@ -288,6 +302,12 @@ sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }
         &on_sphere,
         &["`mu`", "friction on a rigid sphere needs convective coordinates"],
     );
+    let on_cylinder = on_sphere.replace(
+        "sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }",
+        "cylinder = { point = [0.5, 0.5, 1.5], axis = [1.0, 0.0, 0.0], radius = 0.5 }",
+    );
+    refused(&on_cylinder, &["`mu`", "friction on a rigid cylinder"]);
+    assert!(build(&on_cylinder.replace("mu = 0.2", "mu = 0.0")).is_ok());
     // a rigid point as a slave
     let point_slave = format!(
         "{BODIES}{plane}{}",

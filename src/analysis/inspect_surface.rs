@@ -16,6 +16,9 @@ pub fn pair_rows(r: &Recording) -> Vec<String> {
                 Some(RigidShapeInfo::Sphere { radius, .. }) => {
                     format!("{} (sphere, radius {})", p.master, plain(*radius))
                 }
+                Some(RigidShapeInfo::Cylinder { radius, .. }) => {
+                    format!("{} (cylinder, radius {})", p.master, plain(*radius))
+                }
                 None => format!("{} ({})", p.master, count(p.master_facets.len(), "facet", "facets")),
             };
             format!(

@@ -4,7 +4,7 @@
 //! global DOFs they belong to — the system ([`super::system`]) assembles them.
 
 use super::decision::SurfaceRule;
-use super::master::{facet_point, plane_facet, sphere_point, PointLocal};
+use super::master::{facet_point, plane_facet, round_point, PointLocal, Round};
 use super::point::{PointEval, DOFS};
 use super::projection::INSIDE_TOLERANCE;
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD};
@@ -143,7 +143,22 @@ fn on_rigid(
         }
         RigidSurfaceShape::Sphere { centre, radius } => {
             let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
-            let e = sphere_point(&law, x_s, (centre, radius), decider, local);
+            let round = Round {
+                centre,
+                axis: None,
+                radius,
+            };
+            let e = round_point(&law, x_s, round, decider, local);
+            (e, crate::contact3d::vec3::norm(centre) + radius)
+        }
+        RigidSurfaceShape::Cylinder { point, axis, radius } => {
+            let centre: [f64; 3] = std::array::from_fn(|c| (point[c] - origin[c]) + offset[c]);
+            let round = Round {
+                centre,
+                axis: Some(axis),
+                radius,
+            };
+            let e = round_point(&law, x_s, round, decider, local);
             (e, crate::contact3d::vec3::norm(centre) + radius)
         }
     };

@@ -1,7 +1,8 @@
 //! One 3D contact point against its master, in the form the system assembles: the local
 //! problem of a slave node and a facet of a deformable face (15 DOFs, [`super::point`]), of a
 //! slave node and a rigid plane (the plane as a fixed bilinear facet, the slave's 3 DOFs
-//! kept), or of a slave node and a rigid sphere (closed form, 3 DOFs, frictionless).
+//! kept), or of a slave node and a rigid sphere or cylinder (closed form, 3 DOFs,
+//! frictionless).
 //!
 //! Every position is taken about the slave's reference position (its own origin), as in 2D:
 //! gaps and convective coordinates are differences of nearby points, computed from the same
@@ -78,19 +79,34 @@ impl PointLocal {
     }
 }
 
-/// A slave at `x` (about its origin) against the rigid sphere `centre` (about the origin,
-/// moved), `radius`, frictionless, its state decided by `rule` ([`super::decision`]; `warm`:
-/// by the force unknowns alone): `ζ = |x − c| − R`, `n = (x − c)/|x − c|`, `N_ε = −ε_N ζ`,
-/// `r = −N_ε n` while closed, `r_eq = −N̄ n` with the normal force unknown `N̄`, and
-/// `k = ε_N n nᵀ − N̄ (I − n nᵀ)/|x − c|` (3 DOFs; `r`, `k` zero when open).
-pub fn sphere_point(
+/// A rigid round surface about the slave's origin: a sphere (`axis` `None`) or an infinite
+/// circular cylinder through `centre` along the unit `axis`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Round {
+    pub centre: [f64; 3],
+    pub axis: Option<[f64; 3]>,
+    pub radius: f64,
+}
+
+/// A slave at `x` (about its origin) against a rigid sphere or cylinder `round`,
+/// frictionless, its state decided by `rule` ([`super::decision`]; `warm`: by the force
+/// unknowns alone). With `d = P (x − c)`, `P = I` for a sphere and `P = I − a aᵀ` for a
+/// cylinder of axis `a`: `ζ = |d| − R`, `n = d/|d|`, `N_ε = −ε_N ζ`, `r = −N_ε n` while closed,
+/// `r_eq = −N̄ n` with the normal force unknown `N̄`, and `k = ε_N n nᵀ − N̄ (P − n nᵀ)/|d|`
+/// (`∂n/∂x = (P − n nᵀ)/|d|`; 3 DOFs; `r`, `k` zero when open).
+pub fn round_point(
     law: &ContactLaw,
     x: [f64; 3],
-    (centre, radius): ([f64; 3], f64),
+    round: Round,
     (rule, warm): (SurfaceRule, bool),
     out: &mut PointLocal,
 ) -> PointEval<f64> {
-    let d = sub(x, centre);
+    let Round { centre, axis, radius } = round;
+    let project = |v: [f64; 3]| match axis {
+        Some(a) => sub(v, scale(a, dot(v, a))),
+        None => v,
+    };
+    let d = project(sub(x, centre));
     let dist = norm(d);
     let n = scale(d, 1.0 / dist);
     let gap = dist - radius;
@@ -98,7 +114,7 @@ pub fn sphere_point(
     let identity = [[1.0, 0.0], [0.0, 1.0]];
     let point = FacetPoint {
         xi: [0.0, 0.0],
-        rho: add(centre, scale(n, radius)),
+        rho: sub(x, scale(n, gap)),
         tangents: [t1, t2],
         metric: identity,
         inverse: identity,
@@ -122,9 +138,9 @@ pub fn sphere_point(
         for i in 0..3 {
             out.r[i] = -n_eps * n[i];
             out.lin.d_normal[i] = -law.eps_n * n[i];
+            let e_i = project(std::array::from_fn(|c| if c == i { 1.0 } else { 0.0 }));
             for j in 0..3 {
-                let delta = if i == j { 1.0 } else { 0.0 };
-                out.k[3 * i + j] = law.eps_n * n[i] * n[j] - n_bar * (delta - n[i] * n[j]) / dist;
+                out.k[3 * i + j] = law.eps_n * n[i] * n[j] - n_bar * (e_i[j] - n[i] * n[j]) / dist;
             }
         }
     }
@@ -166,41 +182,55 @@ mod tests {
     use super::*;
     use crate::contact3d::surface::Facet;
 
+    /// The tangent of a sphere and of a tilted cylinder against central differences of the
+    /// residual (1e-6 of ε_N); the slave's force points away from the centre or the axis and,
+    /// on the cylinder, has no component along the axis (1e-12).
     #[test]
-    fn the_sphere_tangent_is_the_derivative_of_its_residual() {
+    fn the_round_tangents_are_the_derivatives_of_their_residuals() {
         let law = ContactLaw {
             eps_n: 1e3,
             eps_t: 0.0,
             mu: 0.0,
         };
         let c = [0.1, -0.2, 1.0];
+        let tilted = scale([0.3, 1.0, 0.2], 1.0 / norm([0.3, 1.0, 0.2]));
         let x = [0.05, 0.02, 0.05];
         let penalty = (SurfaceRule::Penalty, false);
-        let mut out = PointLocal::default();
-        let e = sphere_point(&law, x, (c, 1.0), penalty, &mut out);
-        assert_eq!(e.state, ContactState::Slip);
-        let (r, k) = (out.r, out.k);
-        let h = 1e-7;
-        for j in 0..3 {
-            let (mut op, mut om) = (PointLocal::default(), PointLocal::default());
-            let mut xp = x;
-            xp[j] += h;
-            sphere_point(&law, xp, (c, 1.0), penalty, &mut op);
-            let mut xm = x;
-            xm[j] -= h;
-            sphere_point(&law, xm, (c, 1.0), penalty, &mut om);
-            for i in 0..3 {
-                let fd = (op.r[i] - om.r[i]) / (2.0 * h);
-                assert!(
-                    (fd - k[3 * i + j]).abs() <= 1e-6 * law.eps_n,
-                    "k[{i}{j}] {} vs {fd}",
-                    k[3 * i + j]
-                );
+        for axis in [None, Some(tilted)] {
+            let round = Round {
+                centre: c,
+                axis,
+                radius: 1.0,
+            };
+            let mut out = PointLocal::default();
+            let e = round_point(&law, x, round, penalty, &mut out);
+            assert_eq!(e.state, ContactState::Slip, "{axis:?}");
+            let (r, k) = (out.r, out.k);
+            let h = 1e-7;
+            for j in 0..3 {
+                let (mut op, mut om) = (PointLocal::default(), PointLocal::default());
+                let mut xp = x;
+                xp[j] += h;
+                round_point(&law, xp, round, penalty, &mut op);
+                let mut xm = x;
+                xm[j] -= h;
+                round_point(&law, xm, round, penalty, &mut om);
+                for i in 0..3 {
+                    let fd = (op.r[i] - om.r[i]) / (2.0 * h);
+                    assert!(
+                        (fd - k[3 * i + j]).abs() <= 1e-6 * law.eps_n,
+                        "{axis:?}: k[{i}{j}] {} vs {fd}",
+                        k[3 * i + j]
+                    );
+                }
+            }
+            let force = scale([r[0], r[1], r[2]], -1.0);
+            let outward = sub(x, c);
+            assert!(dot(force, outward) > 0.0);
+            if let Some(a) = axis {
+                assert!(dot(force, a).abs() <= 1e-12 * norm(force));
             }
         }
-        // the force on the slave points out of the sphere
-        let outward = sub(x, c);
-        assert!(dot(scale([r[0], r[1], r[2]], -1.0), outward) > 0.0);
     }
 
     #[test]

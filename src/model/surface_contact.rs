@@ -89,4 +89,11 @@ pub enum RigidSurfaceShape {
     Plane { point: [f64; 3], normal: [f64; 3] },
     /// A rigid ball: the outside of the sphere `centre`, `radius` is the contact surface.
     Sphere { centre: [f64; 3], radius: f64 },
+    /// A rigid round bar: the outside of the infinite circular cylinder through `point` along
+    /// the unit `axis`, `radius`.
+    Cylinder {
+        point: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+    },
 }

@@ -170,6 +170,18 @@ pub enum RigidShapeInfo {
         #[schemars(with = "Real")]
         radius: f64,
     },
+    /// The infinite circular cylinder through `point` along the unit `axis`.
+    Cylinder {
+        #[serde(with = "Real3")]
+        #[schemars(with = "Real3")]
+        point: [f64; 3],
+        #[serde(with = "Real3")]
+        #[schemars(with = "Real3")]
+        axis: [f64; 3],
+        #[serde(with = "Real")]
+        #[schemars(with = "Real")]
+        radius: f64,
+    },
 }
 
 impl SurfacePairInfo {
@@ -183,6 +195,9 @@ impl SurfacePairInfo {
                 let shape = match r.shape {
                     RigidSurfaceShape::Plane { point, normal } => RigidShapeInfo::Plane { point, normal },
                     RigidSurfaceShape::Sphere { centre, radius } => RigidShapeInfo::Sphere { centre, radius },
+                    RigidSurfaceShape::Cylinder { point, axis, radius } => {
+                        RigidShapeInfo::Cylinder { point, axis, radius }
+                    }
                 };
                 (format!("rigid {}", r.name), Vec::new(), Some(shape))
             }

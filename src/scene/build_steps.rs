@@ -232,7 +232,7 @@ fn body_load(cx: &Ctx, m: &mut Model, bl: &BodyLoadSpec, end: f64) -> Result<(),
     Ok(())
 }
 
-/// The rigid bodies: shape and motion (the 3D keys `plane`, `sphere`, `move.z` refused).
+/// The rigid bodies: shape and motion (the 3D keys `plane`, `sphere`, `cylinder`, `move.z` refused).
 pub(super) fn add_rigid(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Result<(), SceneError> {
     for r in &s.rigid {
         refuse_3d_rigid(cx, r)?;
@@ -246,11 +246,12 @@ pub(super) fn add_rigid(cx: &Ctx, s: &SceneFile, m: &mut Model, end: f64) -> Res
     Ok(())
 }
 
-/// A 2D scene's rigid body with a 3D key (`plane`, `sphere`, `move.z`) is refused.
+/// A 2D scene's rigid body with a 3D key (`plane`, `sphere`, `cylinder`, `move.z`) is refused.
 fn refuse_3d_rigid(cx: &Ctx, r: &RigidSpec) -> Result<(), SceneError> {
     let key = [
         ("plane", r.plane.is_some()),
         ("sphere", r.sphere.is_some()),
+        ("cylinder", r.cylinder.is_some()),
         ("move.z", r.motion.z.is_some()),
     ]
     .into_iter()
@@ -259,7 +260,7 @@ fn refuse_3d_rigid(cx: &Ctx, r: &RigidSpec) -> Result<(), SceneError> {
         Some(k) => Err(cx.err(
             &r.name,
             format!("rigid body `{}`: `{k}` is a 3D rigid surface in a 2D scene", r.name),
-            "a 2D rigid body is a point, polyline, arc, outline or polygon moved in x and y; `plane`, `sphere` and `move.z` need 3D bodies (a `box` or `gmsh-3d` mesh)",
+            "a 2D rigid body is a point, polyline, arc, outline or polygon moved in x and y (a cylinder's section is an `arc`); `plane`, `sphere`, `cylinder` and `move.z` need 3D bodies (a `box` or `gmsh-3d` mesh)",
         )),
         None => Ok(()),
     }

@@ -42,10 +42,10 @@ pub(super) fn rigid_surfaces(cx: &Ctx, s: &SceneFile, end: f64) -> Result<Vec<Ri
     s.rigid.iter().map(|r| rigid_surface(cx, r, end)).collect()
 }
 
-/// One rigid surface: exactly one of `plane` and `sphere` (the 2D shape keys refused), its
-/// normal made unit, its translation in x, y and z.
+/// One rigid surface: exactly one of `plane`, `sphere` and `cylinder` (the 2D shape keys
+/// refused), its normal or axis made unit, its translation in x, y and z.
 fn rigid_surface(cx: &Ctx, r: &RigidSpec, end: f64) -> Result<RigidSurface, SceneError> {
-    let hint = "a 3D rigid body is `plane = { point = [x, y, z], normal = [nx, ny, nz] }` or `sphere = { centre = [x, y, z], radius = R }`";
+    let hint = "a 3D rigid body is `plane = { point = [x, y, z], normal = [nx, ny, nz] }`, `sphere = { centre = [x, y, z], radius = R }` or `cylinder = { point = [x, y, z], axis = [ax, ay, az], radius = R }`";
     let two_d = [
         ("point", r.point.is_some()),
         ("polyline", r.polyline.is_some()),
@@ -64,32 +64,52 @@ fn rigid_surface(cx: &Ctx, r: &RigidSpec, end: f64) -> Result<RigidSurface, Scen
             hint,
         ));
     }
-    let shape = match (&r.plane, &r.sphere) {
-        (Some(p), None) => RigidSurfaceShape::Plane {
+    let given: Vec<&str> = [
+        ("`plane`", r.plane.is_some()),
+        ("`sphere`", r.sphere.is_some()),
+        ("`cylinder`", r.cylinder.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(k, g)| g.then_some(k))
+    .collect();
+    if given.len() != 1 {
+        let msg = match given.len() {
+            0 => format!(
+                "rigid body `{}` has no shape: give `plane`, `sphere` or `cylinder`",
+                r.name
+            ),
+            _ => format!(
+                "rigid body `{}` has {}: one shape per rigid body",
+                r.name,
+                given.join(" and ")
+            ),
+        };
+        return Err(cx.err(&r.name, msg, hint));
+    }
+    let zero_vector = |key: &str| cx.err(&r.name, format!("rigid body `{}`: `{key}` is zero", r.name), hint);
+    let positive = |key: &str, v: f64| -> Result<f64, SceneError> {
+        if v > 0.0 {
+            return Ok(v);
+        }
+        let msg = format!("rigid body `{}`: `{key}` = {v} must be > 0", r.name);
+        Err(cx.err(&r.name, msg, hint))
+    };
+    let shape = if let Some(p) = &r.plane {
+        RigidSurfaceShape::Plane {
             point: p.point,
-            normal: unit(p.normal).ok_or_else(|| {
-                cx.err(
-                    &r.name,
-                    format!("rigid body `{}`: `plane.normal` is zero", r.name),
-                    hint,
-                )
-            })?,
-        },
-        (None, Some(sp)) if sp.radius > 0.0 => RigidSurfaceShape::Sphere {
+            normal: unit(p.normal).ok_or_else(|| zero_vector("plane.normal"))?,
+        }
+    } else if let Some(sp) = &r.sphere {
+        RigidSurfaceShape::Sphere {
             centre: sp.centre,
-            radius: sp.radius,
-        },
-        (None, Some(sp)) => {
-            let msg = format!("rigid body `{}`: `sphere.radius` = {} must be > 0", r.name, sp.radius);
-            return Err(cx.err(&r.name, msg, hint));
+            radius: positive("sphere.radius", sp.radius)?,
         }
-        (Some(_), Some(_)) => {
-            let msg = format!("rigid body `{}` has both `plane` and `sphere`", r.name);
-            return Err(cx.err(&r.name, msg, hint));
-        }
-        (None, None) => {
-            let msg = format!("rigid body `{}` has no shape: give `plane` or `sphere`", r.name);
-            return Err(cx.err(&r.name, msg, hint));
+    } else {
+        let cy = r.cylinder.as_ref().expect("one shape given");
+        RigidSurfaceShape::Cylinder {
+            point: cy.point,
+            axis: unit(cy.axis).ok_or_else(|| zero_vector("cylinder.axis"))?,
+            radius: positive("cylinder.radius", cy.radius)?,
         }
     };
     let m = &r.motion;
@@ -128,11 +148,16 @@ pub(super) fn add_surface_contacts(
         let master = surface_master(cx, m, c, rigid)?;
         let law = contact_law(cx, c)?;
         if let (SurfaceMaster::Rigid(r), true) = (&master, law.mu > 0.0) {
-            if let RigidSurfaceShape::Sphere { .. } = r.shape {
+            let round = match r.shape {
+                RigidSurfaceShape::Sphere { .. } => Some("sphere"),
+                RigidSurfaceShape::Cylinder { .. } => Some("cylinder"),
+                RigidSurfaceShape::Plane { .. } => None,
+            };
+            if let Some(kind) = round {
                 return Err(cx.err(
                     &c.name,
-                    format!("contact `{}`: `mu` = {} against the rigid sphere `{}`: friction on a rigid sphere needs convective coordinates on the sphere, not built", c.name, c.mu, r.name),
-                    "set mu = 0 (frictionless) against a sphere, or press on a rigid plane or a deformable face",
+                    format!("contact `{}`: `mu` = {} against the rigid {kind} `{}`: friction on a rigid {kind} needs convective coordinates on it, not built", c.name, c.mu, r.name),
+                    "set mu = 0 (frictionless) against a sphere or a cylinder, or press on a rigid plane or a deformable face",
                 ));
             }
         }
@@ -394,6 +419,12 @@ pub fn rigid_gap(shape: &RigidSurfaceShape, x: [f64; 3]) -> f64 {
         RigidSurfaceShape::Sphere { centre, radius } => {
             let d: f64 = (0..3).map(|c| (x[c] - centre[c]).powi(2)).sum();
             d.sqrt() - radius
+        }
+        RigidSurfaceShape::Cylinder { point, axis, radius } => {
+            let d: [f64; 3] = std::array::from_fn(|c| x[c] - point[c]);
+            let along: f64 = (0..3).map(|c| d[c] * axis[c]).sum();
+            let r2: f64 = (0..3).map(|c| (d[c] - along * axis[c]).powi(2)).sum();
+            r2.sqrt() - radius
         }
     }
 }

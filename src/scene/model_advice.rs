@@ -152,6 +152,7 @@ fn rigid_surfaces_extruded(m: &Model<Solid>, k: usize) -> bool {
             let shape = match r.shape {
                 RigidSurfaceShape::Plane { normal, .. } => normal[k] == 0.0,
                 RigidSurfaceShape::Sphere { .. } => false,
+                RigidSurfaceShape::Cylinder { axis, .. } => axis[k].abs() == 1.0,
             };
             shape && r.motion[k].is_zero()
         }

@@ -98,7 +98,8 @@ fn symmetry_holds_only(m: &Model<Solid>, tol: f64) -> bool {
     })
 }
 
-/// Loads along `z` only; rigid planes normal to `z`, spheres on the axis, motions along `z`.
+/// Loads along `z` only; rigid planes normal to `z`, spheres on the axis and cylinders about
+/// it, motions along `z`.
 fn axisymmetric_actions(m: &Model<Solid>) -> bool {
     let loads = m.loads.iter().all(|l| l.dof % 3 == 2 || l.ramp.is_zero());
     let rigid = m.surface_contacts.iter().all(|pair| match &pair.master {
@@ -107,6 +108,9 @@ fn axisymmetric_actions(m: &Model<Solid>) -> bool {
             let on_axis = match r.shape {
                 RigidSurfaceShape::Plane { normal, .. } => normal[0] == 0.0 && normal[1] == 0.0,
                 RigidSurfaceShape::Sphere { centre, .. } => centre[0] == 0.0 && centre[1] == 0.0,
+                RigidSurfaceShape::Cylinder { point, axis, .. } => {
+                    point[0] == 0.0 && point[1] == 0.0 && axis[2].abs() == 1.0
+                }
             };
             on_axis && r.motion[0].is_zero() && r.motion[1].is_zero()
         }

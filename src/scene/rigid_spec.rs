@@ -114,6 +114,19 @@ pub struct PlaneSpec {
     pub normal: [f64; 3],
 }
 
+/// A rigid round bar (3D): the infinite circular cylinder through `point` along `axis` is the
+/// contact surface, the slaves outside it.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderSpec {
+    /// A point of the axis.
+    pub point: [f64; 3],
+    /// The axis direction (not zero; made unit).
+    pub axis: [f64; 3],
+    /// Radius (> 0).
+    pub radius: f64,
+}
+
 /// A rigid ball (3D): its sphere is the contact surface, the slaves outside it.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

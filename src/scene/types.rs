@@ -8,7 +8,9 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use super::mesh_spec::{Bias, MeshSpec, Rotation};
-pub use super::rigid_spec::{ArcSide, ArcSpec, MotionSpec, PieceSpec, PlaneSpec, PolygonSpec, SphereSpec};
+pub use super::rigid_spec::{
+    ArcSide, ArcSpec, CylinderSpec, MotionSpec, PieceSpec, PlaneSpec, PolygonSpec, SphereSpec,
+};
 
 /// A whole scene.
 #[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
@@ -264,6 +266,8 @@ pub struct RigidSpec {
     pub plane: Option<PlaneSpec>,
     /// 3D only: a rigid ball.
     pub sphere: Option<SphereSpec>,
+    /// 3D only: a rigid round bar (an infinite circular cylinder).
+    pub cylinder: Option<CylinderSpec>,
     /// Prescribed translation histories.
     #[serde(default, rename = "move")]
     pub motion: MotionSpec,

@@ -1,10 +1,10 @@
 //! Checks of the `rigid` tables: exactly one shape; polylines, arcs and the pieces of a
 //! composite outline well formed; an outline's pieces joined end to end; arc sides that agree
 //! with the orientation; a 3D plane's and sphere's numbers finite, a plane's normal not zero,
-//! a sphere's radius positive.
+//! a sphere's and a cylinder's radius positive, a cylinder's axis not zero.
 
 use super::{named, sub, Check, Extent, P, R};
-use crate::scene::types::{ArcSide, ArcSpec, PieceSpec, PlaneSpec, PolygonSpec, RigidSpec, SphereSpec};
+use crate::scene::types::{ArcSide, ArcSpec, CylinderSpec, PieceSpec, PlaneSpec, PolygonSpec, RigidSpec, SphereSpec};
 
 /// Relative tolerance on the joints of an outline (of the outline's size).
 pub const JOINT_TOL: f64 = 1e-9;
@@ -32,6 +32,9 @@ pub(super) fn check(c: &Check, i: usize, r: &RigidSpec, ext: &mut Extent) -> R {
     }
     if let Some(sp) = &r.sphere {
         sphere(c, &sub(&p, "sphere"), &format!("{key}.sphere"), sp, ext)?;
+    }
+    if let Some(cy) = &r.cylinder {
+        cylinder(c, &sub(&p, "cylinder"), &format!("{key}.cylinder"), cy, ext)?;
     }
     for (k, m) in [("x", &r.motion.x), ("y", &r.motion.y), ("z", &r.motion.z)] {
         if let Some(m) = m {
@@ -74,6 +77,27 @@ fn sphere(c: &Check, sp: &[P], key: &str, s: &SphereSpec, ext: &mut Extent) -> R
     point3(c, &sub(sp, "centre"), &format!("{key}.centre"), s.centre, ext)?;
     c.positive(&sub(sp, "radius"), &format!("{key}.radius"), s.radius)?;
     ext.add(s.centre.iter().fold(0.0f64, |a, x| a.max(x.abs())) + s.radius);
+    Ok(())
+}
+
+/// A rigid cylinder: a finite point, a finite axis that is not zero, a positive radius.
+fn cylinder(c: &Check, cp: &[P], key: &str, s: &CylinderSpec, ext: &mut Extent) -> R {
+    point3(c, &sub(cp, "point"), &format!("{key}.point"), s.point, ext)?;
+    let ap = sub(cp, "axis");
+    for (k, x) in s.axis.iter().enumerate() {
+        c.finite(&ap, &format!("{key}.axis[{k}]"), *x)?;
+    }
+    if s.axis.iter().all(|x| *x == 0.0) {
+        return Err(c.fail(
+            &ap,
+            &format!("{key}.axis"),
+            format!("{:?}", s.axis),
+            "a cylinder's axis must not be zero (it is made unit)",
+            "give the direction of the cylinder's axis, e.g. [0, 1, 0]",
+        ));
+    }
+    c.positive(&sub(cp, "radius"), &format!("{key}.radius"), s.radius)?;
+    ext.add(s.point.iter().fold(0.0f64, |a, x| a.max(x.abs())) + s.radius);
     Ok(())
 }
 

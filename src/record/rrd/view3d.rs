@@ -90,6 +90,28 @@ impl SolidView {
                     .with_colors([RIGID])
                     .with_fill_mode(rerun::FillMode::MajorWireframe),
             ),
+            RigidShapeInfo::Cylinder { point, axis, radius } => {
+                // rerun's cylinders stand along +z: turn z onto the axis
+                let turn = [-axis[1], axis[0], 0.0];
+                let sin = (turn[0] * turn[0] + turn[1] * turn[1]).sqrt();
+                let about = if sin > 1e-12 {
+                    [turn[0] / sin, turn[1] / sin, 0.0]
+                } else {
+                    [1.0, 0.0, 0.0]
+                };
+                let angle = sin.atan2(axis[2]);
+                rec.log_static(
+                    path,
+                    &rerun::Cylinders3D::from_lengths_and_radii([2.0 * self.plane_half as f32], [radius as f32])
+                        .with_centers([f32s(point)])
+                        .with_rotation_axis_angles([rerun::RotationAxisAngle::new(
+                            f32s(about),
+                            rerun::Angle::from_radians(angle as f32),
+                        )])
+                        .with_colors([RIGID])
+                        .with_fill_mode(rerun::FillMode::MajorWireframe),
+                )
+            }
             RigidShapeInfo::Plane { point, normal } => {
                 let corners = square(point, normal, self.plane_half);
                 rec.log_static(
