@@ -65,6 +65,29 @@ fn log_range(v: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     10f64.powf(lo.log10().floor())..10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0))
 }
 
+/// The corner of the plot for the legend: the one with the fewest points in the box the
+/// legend takes there (the outer 45 % of the width and 30 % of the height, on the log axes
+/// `xr`, `yr`); the upper right first on a tie (a Pareto chart's usual empty corner).
+fn legend_corner(pts: &[ParetoPoint], xr: &std::ops::Range<f64>, yr: &std::ops::Range<f64>) -> SeriesLabelPosition {
+    let unit = |v: f64, r: &std::ops::Range<f64>| (v.log10() - r.start.log10()) / (r.end.log10() - r.start.log10());
+    let corners = [
+        (SeriesLabelPosition::UpperRight, true, true),
+        (SeriesLabelPosition::LowerLeft, false, false),
+        (SeriesLabelPosition::UpperLeft, false, true),
+        (SeriesLabelPosition::LowerRight, true, false),
+    ];
+    let inside = |right: bool, upper: bool| {
+        (pts.iter())
+            .filter(|p| {
+                let (x, y) = (unit(p.wall_time_s, xr), unit(p.error, yr));
+                (if right { x >= 0.55 } else { x <= 0.45 }) && (if upper { y >= 0.7 } else { y <= 0.3 })
+            })
+            .count()
+    };
+    let best = corners.iter().min_by_key(|(_, right, upper)| inside(*right, *upper));
+    best.map_or(SeriesLabelPosition::UpperRight, |c| c.0.clone())
+}
+
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
@@ -78,6 +101,7 @@ where
     root.fill(&WHITE).map_err(e)?;
     let xr = log_range(pts.iter().map(|p| p.wall_time_s));
     let yr = log_range(pts.iter().map(|p| p.error));
+    let corner = legend_corner(pts, &xr, &yr);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 24))
         .margin(16)
@@ -137,7 +161,7 @@ where
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(corner)
         .draw()
         .map_err(e)?;
     if pts.is_empty() {
@@ -206,5 +230,30 @@ mod tests {
         mark_front(&mut pts);
         let front: Vec<bool> = pts.iter().map(|p| p.on_front).collect();
         assert_eq!(front, [true, false, true, false]);
+    }
+
+    /// The legend goes to the upper right unless points lie there, then to the emptiest
+    /// corner.
+    #[test]
+    fn the_legend_takes_the_emptiest_corner() {
+        let mk = |t: f64, e: f64| ParetoPoint {
+            id: format!("{t}"),
+            family: "f".into(),
+            wall_time_s: t,
+            error: e,
+            flagged: false,
+            on_front: false,
+        };
+        let (xr, yr) = (0.01..10.0, 1e-4..0.1);
+        let usual = [mk(0.02, 0.05), mk(5.0, 2e-4)];
+        assert!(matches!(
+            legend_corner(&usual, &xr, &yr),
+            SeriesLabelPosition::UpperRight
+        ));
+        let upper_right = [mk(0.02, 0.05), mk(5.0, 2e-4), mk(3.0, 0.05)];
+        assert!(matches!(
+            legend_corner(&upper_right, &xr, &yr),
+            SeriesLabelPosition::LowerLeft
+        ));
     }
 }

@@ -53,22 +53,23 @@ fn point3(c: &Check, path: &[P], key: &str, p: [f64; 3], ext: &mut Extent) -> R 
     Ok(())
 }
 
+/// A direction: finite components, not all zero (`why` and `fix` of the refusal).
+fn direction(c: &Check, path: &[P], key: &str, v: [f64; 3], (why, fix): (&str, &str)) -> R {
+    for (k, x) in v.iter().enumerate() {
+        c.finite(path, &format!("{key}[{k}]"), *x)?;
+    }
+    if v.iter().all(|x| *x == 0.0) {
+        return Err(c.fail(path, key, format!("{v:?}"), why, fix));
+    }
+    Ok(())
+}
+
 /// A rigid plane: a finite point, a finite normal that is not zero.
 fn plane(c: &Check, pp: &[P], key: &str, pl: &PlaneSpec, ext: &mut Extent) -> R {
     point3(c, &sub(pp, "point"), &format!("{key}.point"), pl.point, ext)?;
-    let np = sub(pp, "normal");
-    for (k, x) in pl.normal.iter().enumerate() {
-        c.finite(&np, &format!("{key}.normal[{k}]"), *x)?;
-    }
-    if pl.normal.iter().all(|x| *x == 0.0) {
-        return Err(c.fail(
-            &np,
-            &format!("{key}.normal"),
-            format!("{:?}", pl.normal),
-            "a plane's normal must not be zero (it is made unit)",
-            "give the outward normal, pointing from the rigid body towards the slaves, e.g. [0, 0, 1]",
-        ));
-    }
+    let why = "a plane's normal must not be zero (it is made unit)";
+    let fix = "give the outward normal, pointing from the rigid body towards the slaves, e.g. [0, 0, 1]";
+    direction(c, &sub(pp, "normal"), &format!("{key}.normal"), pl.normal, (why, fix))?;
     Ok(())
 }
 
@@ -83,19 +84,9 @@ fn sphere(c: &Check, sp: &[P], key: &str, s: &SphereSpec, ext: &mut Extent) -> R
 /// A rigid cylinder: a finite point, a finite axis that is not zero, a positive radius.
 fn cylinder(c: &Check, cp: &[P], key: &str, s: &CylinderSpec, ext: &mut Extent) -> R {
     point3(c, &sub(cp, "point"), &format!("{key}.point"), s.point, ext)?;
-    let ap = sub(cp, "axis");
-    for (k, x) in s.axis.iter().enumerate() {
-        c.finite(&ap, &format!("{key}.axis[{k}]"), *x)?;
-    }
-    if s.axis.iter().all(|x| *x == 0.0) {
-        return Err(c.fail(
-            &ap,
-            &format!("{key}.axis"),
-            format!("{:?}", s.axis),
-            "a cylinder's axis must not be zero (it is made unit)",
-            "give the direction of the cylinder's axis, e.g. [0, 1, 0]",
-        ));
-    }
+    let why = "a cylinder's axis must not be zero (it is made unit)";
+    let fix = "give the direction of the cylinder's axis, e.g. [0, 1, 0]";
+    direction(c, &sub(cp, "axis"), &format!("{key}.axis"), s.axis, (why, fix))?;
     c.positive(&sub(cp, "radius"), &format!("{key}.radius"), s.radius)?;
     ext.add(s.point.iter().fold(0.0f64, |a, x| a.max(x.abs())) + s.radius);
     Ok(())
