@@ -130,6 +130,12 @@ fn on_rigid(
     let law = pair.law_of(is);
     let mut out = Evaluated::unpaired();
     let offset = rigid.offset(cfg.t);
+    // a sphere or a cylinder about the slave's origin, moved; the scale of its coordinates
+    let round = |centre: [f64; 3], axis, radius, local: &mut PointLocal| {
+        let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
+        let e = round_point(&law, x_s, Round { centre, axis, radius }, decider, local);
+        (e, crate::contact3d::vec3::norm(centre) + radius)
+    };
     let (e, scale) = match rigid.shape {
         RigidSurfaceShape::Plane { point, normal } => {
             let facet = plane_facet(point, normal, plane_half, offset, origin);
@@ -141,26 +147,8 @@ fn on_rigid(
             local.keep_slave();
             (e, plane_half)
         }
-        RigidSurfaceShape::Sphere { centre, radius } => {
-            let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
-            let round = Round {
-                centre,
-                axis: None,
-                radius,
-            };
-            let e = round_point(&law, x_s, round, decider, local);
-            (e, crate::contact3d::vec3::norm(centre) + radius)
-        }
-        RigidSurfaceShape::Cylinder { point, axis, radius } => {
-            let centre: [f64; 3] = std::array::from_fn(|c| (point[c] - origin[c]) + offset[c]);
-            let round = Round {
-                centre,
-                axis: Some(axis),
-                radius,
-            };
-            let e = round_point(&law, x_s, round, decider, local);
-            (e, crate::contact3d::vec3::norm(centre) + radius)
-        }
+        RigidSurfaceShape::Sphere { centre, radius } => round(centre, None, radius, local),
+        RigidSurfaceShape::Cylinder { point, axis, radius } => round(point, Some(axis), radius, local),
     };
     if e.projection.gap > pair.search_radius {
         return out;

@@ -81,13 +81,16 @@ impl<S: Scalar> Facet<S> {
         p
     }
 
+    /// Shape function derivatives `[∂N_I/∂ξ¹, ∂N_I/∂ξ²]` of each node `I`.
+    pub fn shape_gradients(xi: [S; 2]) -> [[S; 2]; 4] {
+        NODE_XI.map(|[a, b]| [(xi[1] * b + 1.0) * (0.25 * a), (xi[0] * a + 1.0) * (0.25 * b)])
+    }
+
     /// `ρ_α(ξ) = ∂N_I/∂ξ^α x_I`.
     pub fn tangents(&self, xi: [S; 2]) -> [V3<S>; 2] {
         let zero = S::from(0.0);
         let mut t = [[zero; 3]; 2];
-        for (x, [a, b]) in self.x.iter().zip(NODE_XI) {
-            let d1 = (xi[1] * b + 1.0) * (0.25 * a);
-            let d2 = (xi[0] * a + 1.0) * (0.25 * b);
+        for (x, [d1, d2]) in self.x.iter().zip(Self::shape_gradients(xi)) {
             t[0] = add(t[0], scale(*x, d1));
             t[1] = add(t[1], scale(*x, d2));
         }

@@ -16,8 +16,8 @@
 
 use super::point::DOFS;
 use super::projection::Projection;
-use super::surface::{Facet, NODE_XI};
-use super::vec3::{Scalar, V3};
+use super::surface::Facet;
+use super::vec3::Scalar;
 
 /// `∇ζ` and `∇ξ^α` over the 15 local DOFs (see the module docs).
 #[derive(Debug, Clone, Copy)]
@@ -49,15 +49,12 @@ pub fn variations<S: Scalar>(p: &Projection<S>) -> Variations<S> {
         out.xi[0][c] = x[0];
         out.xi[1][c] = x[1];
     }
-    for (slot, (ni, [s1, s2])) in shape.into_iter().zip(NODE_XI).enumerate() {
-        // ∂N_I/∂ξ^α of the bilinear shape
-        let d1 = (point.xi[1] * s2 + 1.0) * (0.25 * s1);
-        let d2 = (point.xi[0] * s1 + 1.0) * (0.25 * s2);
+    let gradients = Facet::<S>::shape_gradients(point.xi);
+    for (slot, (ni, [d1, d2])) in shape.into_iter().zip(gradients).enumerate() {
         for c in 0..3 {
             let k = 3 * (slot + 1) + c;
             out.gap[k] = -(ni * n[c]);
-            let along: V3<S> = [zeta * d1 * n[c], zeta * d2 * n[c], zero];
-            let x = solve([along[0] - ni * rho[0][c], along[1] - ni * rho[1][c]]);
+            let x = solve([zeta * d1 * n[c] - ni * rho[0][c], zeta * d2 * n[c] - ni * rho[1][c]]);
             out.xi[0][k] = x[0];
             out.xi[1][k] = x[1];
         }
@@ -69,6 +66,7 @@ pub fn variations<S: Scalar>(p: &Projection<S>) -> Variations<S> {
 mod tests {
     use super::*;
     use crate::contact3d::projection::project;
+    use crate::contact3d::vec3::V3;
     use num_dual::Dual2SVec64;
 
     /// A warped facet and a slave off it: the closed forms equal the gradients that
