@@ -6,8 +6,7 @@
 use super::decision::SurfaceRule;
 use super::master::{facet_point, plane_facet, round_point, PointLocal, Round};
 use super::point::{PointEval, DOFS};
-use super::projection::INSIDE_TOLERANCE;
-use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD};
+use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD, FREE_BORDER_ROUNDOFF};
 use super::surface::Facet;
 use super::system::{locate, Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
 use super::transfer::{transfer, trial_against_continuous, Scheme};
@@ -33,43 +32,56 @@ impl Evaluated {
     }
 }
 
+/// Where the search for a slave's facet starts: the facet of the last iterate (else of the
+/// last converged increment), whether the point was closed at the last iterate, and the
+/// free borders of the master's facets.
+pub struct SearchStart<'a> {
+    pub grid: Option<&'a FacetGrid>,
+    pub facet: Option<usize>,
+    pub closed_at_last_iterate: bool,
+    pub borders: &'a [[bool; 4]],
+}
+
 /// Pair and evaluate slave `is` of `pair`, its state decided by `decider` (the rule and
 /// whether it decides by the force unknowns alone); the local arrays into `local`.
 pub fn evaluate_point(
     cfg: &SurfaceConfig,
     (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
-    (grid, start, borders): (Option<&FacetGrid>, Option<usize>, &[[bool; 4]]),
+    search: SearchStart,
     plane_half: f64,
     decider: (SurfaceRule, bool),
     local: &mut PointLocal,
 ) -> Evaluated {
     match &pair.master {
-        SurfaceMaster::Facets { facets, .. } => {
-            let grid = grid.expect("a facet master has a grid");
-            on_facets(cfg, (pair, is, hist), facets, (grid, start, borders), decider, local)
-        }
+        SurfaceMaster::Facets { facets, .. } => on_facets(cfg, (pair, is, hist), facets, search, decider, local),
         SurfaceMaster::Rigid(rigid) => on_rigid(cfg, (pair, is, hist), rigid, plane_half, decider, local),
     }
 }
 
 /// Slave `is` against the facets of a deformable face: located (from `start`), its history
 /// carried onto the facet it is on now, evaluated on its 5 nodes. A point whose contact
-/// point lies past the face's free border (`borders`) is not paired ([`past_free_border`]),
-/// unless it was closed on the face at the last converged increment and is still
-/// penetrating, within [`FREE_BORDER_HOLD`] of the border — on that facet or the next one
-/// along the border (a point sliding along the free border crosses facets there).
+/// point lies past the face's free border (`borders`) by more than its round-off
+/// ([`FREE_BORDER_ROUNDOFF`]) is not paired ([`past_free_border`]), unless it was closed on
+/// the face at the last converged increment or at the last iterate (as in 2D,
+/// `contact::pairing::held_at_free_end`) and is still penetrating, within
+/// [`FREE_BORDER_HOLD`] of the border — on that facet or the next one along the border (a
+/// point sliding along the free border crosses facets there). Without the iterate's part, a
+/// node of a body flush with its master's border, pressed in, was released as soon as
+/// Newton moved it a hair past the border and caught again when it came back: the residual
+/// jumped there and Newton stalled on the jump.
 fn on_facets(
     cfg: &SurfaceConfig,
     (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
     facets: &[[usize; 4]],
-    (grid, start, borders): (&FacetGrid, Option<usize>, &[[bool; 4]]),
+    search: SearchStart,
     decider: (SurfaceRule, bool),
     local: &mut PointLocal,
 ) -> Evaluated {
     let node = pair.slaves[is];
     let origin = cfg.model.nodes[node];
     let mut out = Evaluated::unpaired();
-    let Some(f) = locate(cfg, facets, grid, (node, origin), start, pair.search_radius) else {
+    let grid = search.grid.expect("a facet master has a grid");
+    let Some(f) = locate(cfg, facets, grid, (node, origin), search.facet, pair.search_radius) else {
         return out;
     };
     out.now.facet = Some(f);
@@ -101,9 +113,10 @@ fn on_facets(
         out.now.facet = None;
         return out;
     };
-    let past = past_free_border(e.projection.point.xi, borders[f]);
-    let held = hist.closed && hist.facet.is_some() && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
-    if past > INSIDE_TOLERANCE && !held {
+    let past = past_free_border(e.projection.point.xi, search.borders[f]);
+    let closed_before = (hist.closed && hist.facet.is_some()) || search.closed_at_last_iterate;
+    let held = closed_before && e.projection.gap < 0.0 && past <= FREE_BORDER_HOLD;
+    if past > FREE_BORDER_ROUNDOFF && !held {
         return Evaluated::unpaired();
     }
     out.now.eval = Some(in_model_coordinates(e, origin));

@@ -165,3 +165,61 @@ fn a_closed_point_just_past_the_free_border_is_held_and_a_fresh_one_is_not() {
     fresh.evaluate(&cfg, &mut |_, _, _, _, _| {});
     assert_eq!(fresh.current[0][0].facet, None);
 }
+
+/// A block's top, narrow across (`[0, 10] × [0, 0.05]` at `z = 0`, normal `+z`), and its
+/// wall (`x = 0`, `z ∈ [−40, 0]`, normal `−x`), meeting at a convex edge; node 6 the slave.
+fn top_and_wall() -> Model<Solid> {
+    let mut model = two_facets(false);
+    model.nodes = vec![
+        [0.0, 0.0, 0.0],
+        [10.0, 0.0, 0.0],
+        [10.0, 0.05, 0.0],
+        [0.0, 0.05, 0.0],
+        [0.0, 0.0, -40.0],
+        [0.0, 0.05, -40.0],
+        [4.0, 0.025, 0.0],
+    ];
+    let pair = &mut model.surface_contacts[0];
+    // the wall first: the search meets it first
+    pair.master = SurfaceMaster::Facets {
+        body: 0,
+        facets: vec![[0, 3, 5, 4], [0, 1, 2, 3]],
+    };
+    pair.search_radius = 50.0;
+    model
+}
+
+#[test]
+fn a_point_a_hair_past_a_narrow_facets_border_stays_with_it_not_with_a_far_wall() {
+    // The refined plate over an edge: a slave on the top, 1e-12 past its free border
+    // across (ξ² = 1 + 4e-11) and 1e-9 into it, lies as far outside the wall's corner in
+    // ξ (the wall is as wide) and 4 behind the wall's plane. The nearest facet is the top;
+    // before the rule ranked by distance, the wall could win the tie in ξ and the point
+    // was paired with a gap of −4.
+    let model = top_and_wall();
+    let SurfaceMaster::Facets { facets, .. } = &model.surface_contacts[0].master else {
+        unreachable!()
+    };
+    let boxes: Vec<_> = facets.iter().map(|f| bounding_box(f.map(|n| model.nodes[n]))).collect();
+    let grid = FacetGrid::new(&boxes, 50.0);
+    for (x, inside) in [([4.0, 0.05 + 1e-12, -1e-9], false), ([4.0, 0.04, -1e-9], true)] {
+        let u = slave_at(&model, x);
+        let cfg = SurfaceConfig {
+            model: &model,
+            u: &u,
+            t: 0.0,
+        };
+        let origin = model.nodes[6];
+        assert_eq!(
+            locate(&cfg, facets, &grid, (6, origin), None, 50.0),
+            Some(1),
+            "inside: {inside}"
+        );
+        // from the wall as the facet of the last iterate, too
+        assert_eq!(
+            locate(&cfg, facets, &grid, (6, origin), Some(0), 50.0),
+            Some(1),
+            "inside: {inside}"
+        );
+    }
+}
