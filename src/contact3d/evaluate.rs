@@ -4,11 +4,12 @@
 //! global DOFs they belong to — the system ([`super::system`]) assembles them.
 
 use super::decision::SurfaceRule;
+use super::locate::locate;
 use super::master::{facet_point, plane_facet, round_point, PointLocal, Round};
 use super::point::{PointEval, DOFS};
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD, FREE_BORDER_ROUNDOFF};
 use super::surface::Facet;
-use super::system::{locate, Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
+use super::system::{Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
 use super::transfer::{transfer, trial_against_continuous, Scheme};
 use crate::contact::law::ContactState;
 use crate::model::{RigidSurfaceShape, SurfaceMaster, SurfacePair};

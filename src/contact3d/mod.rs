@@ -21,6 +21,7 @@
 
 pub mod decision;
 pub mod evaluate;
+pub mod locate;
 pub mod master;
 pub mod point;
 pub mod projection;

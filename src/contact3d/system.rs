@@ -14,9 +14,7 @@ use super::decision::{SurfaceForces, SurfaceRule};
 use super::evaluate::{evaluate_point, is_closed, SearchStart};
 use super::master::PointLocal;
 use super::point::{History, PointEval};
-use super::projection::{project, INSIDE_TOLERANCE};
 use super::search::{bounding_box, free_borders, FacetGrid};
-use super::surface::Facet;
 use super::unknowns::PointLinearization;
 use crate::contact::law::ContactState;
 use crate::contact::system::{Decision, LocalSink};
@@ -428,88 +426,6 @@ fn facet_grid(cfg: &SurfaceConfig, pair: &SurfacePair) -> Option<FacetGrid> {
     };
     let boxes: Vec<[[f64; 3]; 2]> = facets.iter().map(|f| bounding_box(f.map(|n| cfg.node(n)))).collect();
     Some(FacetGrid::new(&boxes, pair.search_radius))
-}
-
-/// The facet slave `x` (current position) is paired with: of the facets within reach, the
-/// nearest to `x` — the distance to its point at the projection's `ξ` clamped to
-/// `[−1, 1]²`, which is `|ζ|` where `x` projects inside it — so the closest point of the
-/// face as a whole (Konyukhov & Schweizerhof, CMAME 197 (2008): the projection onto a C0
-/// surface). Of facets as near (to round-off: the two sides of a convex edge, or an edge
-/// the point projects onto), `start` (the facet of the last iterate), else one it projects
-/// inside, else the one whose projection lies least outside it, its extension then
-/// carrying the point (past the face's free border the caller leaves it unpaired, see
-/// [`super::evaluate`]). `None`: no facet within the search radius. Neither how far `ξ`
-/// lies outside nor being inside may outrank the distance: a point a hair past the free
-/// border of a narrow facet it rests on may project inside, or less far outside in `ξ`, a
-/// long facet meeting that one at an edge, whose plane is far away. The projections are
-/// computed about the slave's reference position `origin` (as the kernels are), so that a
-/// model far from the origin pairs as it does near it.
-pub fn locate(
-    cfg: &SurfaceConfig,
-    facets: &[[usize; 4]],
-    grid: &FacetGrid,
-    (node, origin): (usize, [f64; 3]),
-    start: Option<usize>,
-    radius: f64,
-) -> Option<usize> {
-    let x = cfg.node_about(node, origin);
-    let try_facet = |f: usize| -> Option<FacetScore> {
-        let facet = Facet {
-            x: cfg.facet_about(&facets[f], origin),
-        };
-        let p = project(&facet, x).ok()?;
-        let excess = p.point.xi.iter().map(|v| v.abs() - 1.0).fold(0.0, f64::max);
-        let nearest = facet.position(p.point.xi.map(|v| v.clamp(-1.0, 1.0)));
-        let length = |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
-        (p.gap.abs() <= radius).then_some(FacetScore {
-            excess,
-            gap: p.gap.abs(),
-            distance: length(x, nearest),
-            size: length(facet.x[0], facet.x[2]),
-        })
-    };
-    // the facet of the last iterate first: of facets as near, it stays
-    let mut best: Option<(usize, FacetScore)> = start.and_then(|s| try_facet(s).map(|score| (s, score)));
-    for &f in grid.candidates(cfg.node(node)) {
-        let Some(score) = try_facet(f) else { continue };
-        if best.is_none_or(|(_, b)| score.better_than(&b)) {
-            best = Some((f, score));
-        }
-    }
-    best.map(|(f, _)| f)
-}
-
-/// How a slave projects onto one candidate facet ([`locate`]): how far its `ξ` lies outside
-/// `[−1, 1]²`, its `|ζ|`, its distance to the facet itself, and the facet's size (a
-/// diagonal).
-#[derive(Debug, Clone, Copy)]
-struct FacetScore {
-    excess: f64,
-    gap: f64,
-    distance: f64,
-    size: f64,
-}
-
-impl FacetScore {
-    fn inside(&self) -> bool {
-        self.excess <= INSIDE_TOLERANCE
-    }
-
-    /// The nearer facet; of two as near (to round-off of the distance and of the
-    /// facets' coordinates), one the point projects inside, else the one it lies least
-    /// outside of.
-    fn better_than(&self, other: &FacetScore) -> bool {
-        let tie = 1e-9 * self.distance.max(other.distance) + 1e-12 * self.size.max(other.size);
-        if (self.distance - other.distance).abs() > tie {
-            return self.distance < other.distance;
-        }
-        match (self.inside(), other.inside()) {
-            (true, false) => true,
-            (false, true) => false,
-            (true, true) => self.gap < other.gap,
-            (false, false) => self.excess < other.excess,
-        }
-    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! Tests of the 3D contact state: pairing, history transfer and its failure, commit.
 
 use super::*;
+use crate::contact3d::locate::locate;
 use crate::contact3d::search::{free_borders, past_free_border};
 use crate::contact3d::transfer::Scheme;
 use crate::model::{ContactLaw, SurfaceMaster, SurfacePair};
