@@ -5,6 +5,7 @@ use super::projection::{project, INSIDE_TOLERANCE};
 use super::search::FacetGrid;
 use super::surface::Facet;
 use super::system::SurfaceConfig;
+use super::vec3::{norm, sub};
 
 /// The facet slave `x` (current position) is paired with: of the facets within reach, the
 /// nearest to `x` — the distance to its point at the projection's `ξ` clamped to
@@ -36,17 +37,16 @@ pub fn locate(
         let p = project(&facet, x).ok()?;
         let excess = p.point.xi.iter().map(|v| v.abs() - 1.0).fold(0.0, f64::max);
         let nearest = facet.position(p.point.xi.map(|v| v.clamp(-1.0, 1.0)));
-        let length = |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
         (p.gap.abs() <= radius).then_some(FacetScore {
             excess,
             gap: p.gap.abs(),
-            distance: length(x, nearest),
-            size: length(facet.x[0], facet.x[2]),
+            distance: norm(sub(x, nearest)),
+            size: norm(sub(facet.x[2], facet.x[0])),
         })
     };
     // the facet of the last iterate first: of facets as near, it stays
     let mut best: Option<(usize, FacetScore)> = start.and_then(|s| try_facet(s).map(|score| (s, score)));
-    for &f in grid.candidates(cfg.node(node)) {
+    for &f in grid.candidates(cfg.node(node)).iter().filter(|&&f| Some(f) != start) {
         let Some(score) = try_facet(f) else { continue };
         if best.is_none_or(|(_, b)| score.better_than(&b)) {
             best = Some((f, score));

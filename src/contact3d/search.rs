@@ -70,13 +70,13 @@ pub fn bounding_box(points: impl IntoIterator<Item = [f64; 3]>) -> [[f64; 3]; 2]
 /// border nodes at `ξ = ±1` only to the strain's mismatch.
 pub const FREE_BORDER_HOLD: f64 = 1e-3;
 
-/// How far past a free border (in `ξ`: 1e-9 of the facet's half-width) any point is still
-/// on the face: a node of a body as wide as its master lies on the border to within the
-/// round-off of its coordinates and the displacement noise of converged Newton iterates
-/// (4.7e-14 of a 0.05-wide face after 900 increments of the refined plate over an edge,
-/// which the projection's own `1e-12` took for "beyond": the node went through the wall
-/// unopposed and Newton stalled). Far below anything a mesh resolves.
-pub const FREE_BORDER_ROUNDOFF: f64 = 1e-9;
+/// How far past a free border (in `ξ`) any point is still on the face: the 2D rule's
+/// tolerance on `|ξ| ≤ 1` ([`crate::contact::search::XI_TOL`], 1e-10), one rule in both
+/// dimensions. A node of a body as wide as its master lies on the border to within the
+/// round-off of its coordinates and the displacement noise of converged iterates (4.7e-14 of
+/// a 0.05-wide face, i.e. 1.9e-12 in `ξ`, after 900 increments of the refined plate over an
+/// edge), which the projection's own `1e-12` took for "beyond".
+pub const FREE_BORDER_ROUNDOFF: f64 = crate::contact::search::XI_TOL;
 
 /// Per facet of a face, which of its edges are the face's free border (no other facet of the
 /// face has both its nodes): edge `e` runs from node `e` to node `e + 1 (mod 4)`, i.e. edges
