@@ -34,10 +34,7 @@ fn patch(material: &str, element: &str) {
         let x = m.nodes[n];
         for (c, h) in H.iter().enumerate() {
             let u = h[0] * x[0] + h[1] * x[1];
-            m.prescribed.push(Prescribed {
-                dof: 2 * n + c,
-                ramp: Ramp::linear(u, 1.0),
-            });
+            m.prescribed.push(Prescribed::along(2 * n + c, Ramp::linear(u, 1.0)));
         }
     }
     let (_, mem) = common::solve_ok(&p);

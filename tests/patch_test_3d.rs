@@ -41,10 +41,7 @@ fn distorted_cube(material: Material) -> Model<Solid> {
     for (n, x) in mesh.nodes.iter().enumerate().filter(|(_, x)| boundary(x)) {
         for (c, row) in A.iter().enumerate() {
             let v: f64 = (0..3).map(|j| row[j] * x[j]).sum();
-            prescribed.push(Prescribed {
-                dof: 3 * n + c,
-                ramp: Ramp::linear(v, 1.0),
-            });
+            prescribed.push(Prescribed::along(3 * n + c, Ramp::linear(v, 1.0)));
         }
     }
     Model {

@@ -96,7 +96,8 @@ fn on_facets(
             let carried = transfer(pair.transfer, &facet_a, &h, &facet_now).ok();
             out.now.history_lost = carried.is_none();
             if let (Some(to), false) = (carried, pair.transfer == Scheme::Continuous) {
-                out.now.trial_jump = trial_against_continuous(&facet_a, &h, &facet_now, &to, pair.law_of(is).eps_t);
+                out.now.trial_jump =
+                    trial_against_continuous(&facet_a, &h, &facet_now, &to, pair.law_at(is, cfg.t).eps_t);
             }
             out.now.carried = carried.map(|to| Carried {
                 from_facet: a,
@@ -108,7 +109,7 @@ fn on_facets(
         (h, _) => h,
     };
     let x_s = cfg.node_about(node, origin);
-    let law = pair.law_of(is);
+    let law = pair.law_at(is, cfg.t);
     out.now.frictional = carried.is_some() && law.mu > 0.0;
     let Ok(e) = facet_point(law, (x_s, facet_b), carried, decider, local) else {
         out.now.facet = None;
@@ -141,7 +142,7 @@ fn on_rigid(
     let node = pair.slaves[is];
     let origin = cfg.model.nodes[node];
     let x_s = cfg.node_about(node, origin);
-    let law = pair.law_of(is);
+    let law = pair.law_at(is, cfg.t);
     let mut out = Evaluated::unpaired();
     let offset = rigid.offset(cfg.t);
     // a sphere or a cylinder about the slave's origin, moved; the scale of its coordinates

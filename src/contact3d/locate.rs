@@ -48,7 +48,16 @@ pub fn locate(
     let mut best: Option<(usize, FacetScore)> = start.and_then(|s| try_facet(s).map(|score| (s, score)));
     for &f in grid.candidates(cfg.node(node)).iter().filter(|&&f| Some(f) != start) {
         let Some(score) = try_facet(f) else { continue };
-        if best.is_none_or(|(_, b)| score.better_than(&b)) {
+        let replaces = match best {
+            None => true,
+            // the last iterate's facet keeps a point as near to another: below a vertex
+            // pressed into a dimple, each facet around it is as near (the vertex itself)
+            // and a rule that looked further (which projection lies less far outside)
+            // switched between them from one Newton iterate to the next
+            Some((b, held)) if Some(b) == start && score.ties(&held) => false,
+            Some((_, held)) => score.better_than(&held),
+        };
+        if replaces {
             best = Some((f, score));
         }
     }
@@ -67,6 +76,12 @@ struct FacetScore {
 }
 
 impl FacetScore {
+    /// As near as `other`, to round-off of the distance and of the facets' coordinates.
+    fn ties(&self, other: &FacetScore) -> bool {
+        let tie = 1e-9 * self.distance.max(other.distance) + 1e-12 * self.size.max(other.size);
+        (self.distance - other.distance).abs() <= tie
+    }
+
     fn inside(&self) -> bool {
         self.excess <= INSIDE_TOLERANCE
     }
@@ -75,8 +90,7 @@ impl FacetScore {
     /// facets' coordinates), one the point projects inside, else the one it lies least
     /// outside of.
     fn better_than(&self, other: &FacetScore) -> bool {
-        let tie = 1e-9 * self.distance.max(other.distance) + 1e-12 * self.size.max(other.size);
-        if (self.distance - other.distance).abs() > tie {
+        if !self.ties(other) {
             return self.distance < other.distance;
         }
         match (self.inside(), other.inside()) {

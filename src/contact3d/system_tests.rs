@@ -22,6 +22,7 @@ fn two_facets(folded: bool) -> Model<Solid> {
     Model {
         nodes,
         surface_contacts: vec![SurfacePair {
+            friction: None,
             name: "pair".into(),
             slaves: vec![6],
             areas: vec![1.0],
@@ -223,4 +224,65 @@ fn a_point_a_hair_past_a_narrow_facets_border_stays_with_it_not_with_a_far_wall(
             "inside: {inside}"
         );
     }
+}
+
+/// Four unit facets around a vertex pressed 0.2 down (a dimple: `[0, 2]²`, the vertex at
+/// `(1, 1, −0.2)`, normals up); node 6 the slave.
+fn dimple() -> Model<Solid> {
+    let mut model = two_facets(false);
+    let mut nodes: Vec<[f64; 3]> = (0..9).map(|k| [(k % 3) as f64, (k / 3) as f64, 0.0]).collect();
+    nodes[4][2] = -0.2;
+    // node 6 is the slave: the grid's node 6 (0, 2) goes to index 9
+    nodes.push(nodes[6]);
+    nodes[6] = [1.0, 1.0, -0.3];
+    let g = |k: usize| if k == 6 { 9 } else { k };
+    let pair = &mut model.surface_contacts[0];
+    pair.master = SurfaceMaster::Facets {
+        body: 0,
+        facets: vec![
+            [0, 1, 4, 3].map(g),
+            [1, 2, 5, 4].map(g),
+            [3, 4, 7, 6].map(g),
+            [4, 5, 8, 7].map(g),
+        ],
+    };
+    pair.search_radius = 5.0;
+    model.nodes = nodes;
+    model
+}
+
+#[test]
+fn a_point_below_a_pressed_vertex_keeps_its_facet() {
+    // Below the vertex of a dimple every facet around it is as near (its nearest point is
+    // the vertex); the pairing keeps the facet of the last iterate there. It used to look
+    // on at how far outside each facet the projection lies, and a Newton iterate a hair
+    // aside switched facets: the pole of the twisting hemisphere cycled between two
+    // diagonal facets at the block's centre vertex.
+    let model = dimple();
+    let SurfaceMaster::Facets { facets, .. } = &model.surface_contacts[0].master else {
+        unreachable!()
+    };
+    let boxes: Vec<_> = facets.iter().map(|f| bounding_box(f.map(|n| model.nodes[n]))).collect();
+    let grid = FacetGrid::new(&boxes, 5.0);
+    let origin = model.nodes[6];
+    for x in [[1.0, 1.0, -0.3], [1.0 + 1e-7, 1.0 - 1e-7, -0.3]] {
+        let u = slave_at(&model, x);
+        let cfg = SurfaceConfig {
+            model: &model,
+            u: &u,
+            t: 0.0,
+        };
+        for start in 0..4 {
+            let got = locate(&cfg, facets, &grid, (6, origin), Some(start), 5.0);
+            assert_eq!(got, Some(start), "at {x:?}");
+        }
+    }
+    // a point nearer to one facet goes to it, whatever the last iterate's
+    let u = slave_at(&model, [0.4, 0.5, -0.05]);
+    let cfg = SurfaceConfig {
+        model: &model,
+        u: &u,
+        t: 0.0,
+    };
+    assert_eq!(locate(&cfg, facets, &grid, (6, origin), Some(3), 5.0), Some(0));
 }

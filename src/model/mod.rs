@@ -9,6 +9,7 @@ pub mod hex_boundary;
 pub mod mesh;
 pub mod ramp;
 pub mod rigid;
+pub mod shell_mesh;
 pub mod surface_contact;
 
 use crate::element::material::Material;
@@ -47,11 +48,57 @@ pub struct Body<S: Dim = Plane> {
     pub faces: BTreeMap<String, Vec<S::Face>>,
 }
 
-/// Prescribed value of one degree of freedom (`dof = D node + component`).
+/// Prescribed value of one degree of freedom (`dof = D node + component`): `ramp(t)`, plus
+/// the displacement of a rigid turn where the fix turns its nodes about an axis.
 #[derive(Debug, Clone)]
 pub struct Prescribed {
     pub dof: usize,
     pub ramp: Ramp,
+    pub turn: Option<Turn>,
+}
+
+impl Prescribed {
+    /// A DOF held at `ramp(t)`.
+    pub fn along(dof: usize, ramp: Ramp) -> Self {
+        Prescribed { dof, ramp, turn: None }
+    }
+
+    /// The prescribed displacement at time `t`.
+    pub fn at(&self, t: f64) -> f64 {
+        self.ramp.at(t) + self.turn.as_ref().map_or(0.0, |r| r.displacement(t))
+    }
+
+    /// Zero at every time (held in place).
+    pub fn is_zero(&self) -> bool {
+        self.ramp.is_zero() && self.turn.as_ref().is_none_or(|r| r.angle.is_zero())
+    }
+}
+
+/// The rigid turn of one node about an axis (3D): the component `component` of
+/// `R(θ(t)) a − a`, with `a` the node's arm from a point of the axis and `R` the rotation
+/// by `θ` (radians, right-handed about the unit `axis`; Rodrigues' formula).
+#[derive(Debug, Clone)]
+pub struct Turn {
+    /// `θ(t)` in radians.
+    pub angle: Ramp,
+    pub axis: [f64; 3],
+    pub arm: [f64; 3],
+    pub component: usize,
+}
+
+impl Turn {
+    /// `[R(θ) a − a]_c = [(cos θ − 1)(a − k (k·a)) + sin θ (k × a)]_c`.
+    pub fn displacement(&self, t: f64) -> f64 {
+        let (k, a, c) = (self.axis, self.arm, self.component);
+        let theta = self.angle.at(t);
+        let along = k[0] * a[0] + k[1] * a[1] + k[2] * a[2];
+        let cross = [
+            k[1] * a[2] - k[2] * a[1],
+            k[2] * a[0] - k[0] * a[2],
+            k[0] * a[1] - k[1] * a[0],
+        ];
+        (theta.cos() - 1.0) * (a[c] - k[c] * along) + theta.sin() * cross[c]
+    }
 }
 
 /// Prescribed displacement of one node along a unit direction only (a skew support):
@@ -82,6 +129,9 @@ pub enum MonitorTarget {
     /// A rigid body (index into [`Model::rigid`]): its prescribed travel (the motion law at
     /// `t`) and the sum of the contact forces it receives.
     Rigid(usize),
+    /// A node set of a 3D body, turned about the axis along the monitor's component through
+    /// `point`: the set's turn about it (radians) and the moment of its forces about it.
+    Moment { nodes: Vec<usize>, point: [f64; 3] },
 }
 
 /// One load–displacement monitor: a displacement and a force in one direction.
@@ -255,4 +305,46 @@ pub fn chain_neighbours(segments: &[[usize; 2]]) -> (Vec<Option<usize>>, Vec<Opt
         }
     }
     (prev, next)
+}
+
+#[cfg(test)]
+mod turn_tests {
+    use super::{Ramp, Turn};
+
+    fn turned(axis: [f64; 3], arm: [f64; 3], degrees: f64) -> [f64; 3] {
+        std::array::from_fn(|c| {
+            let turn = Turn {
+                angle: Ramp::linear(degrees.to_radians(), 1.0),
+                axis,
+                arm,
+                component: c,
+            };
+            arm[c] + turn.displacement(1.0)
+        })
+    }
+
+    #[test]
+    fn a_quarter_turn_about_z_takes_x_to_y() {
+        let x = turned([0.0, 0.0, 1.0], [2.0, 0.0, 0.5], 90.0);
+        for (got, want) in x.iter().zip([0.0, 2.0, 0.5]) {
+            assert!((got - want).abs() < 1e-15, "{x:?}");
+        }
+    }
+
+    #[test]
+    fn a_turn_about_a_skew_axis_keeps_length_and_axial_part() {
+        let k = [1.0 / 3f64.sqrt(); 3];
+        let a = [0.3, -1.2, 0.7];
+        // a third of a turn about the cube diagonal permutes the axes
+        let x = turned(k, a, 120.0);
+        for (got, want) in x.iter().zip([a[2], a[0], a[1]]) {
+            assert!((got - want).abs() < 1e-14, "{x:?}");
+        }
+        for degrees in [13.0, 97.0, 181.0, -45.0] {
+            let x = turned(k, a, degrees);
+            let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+            assert!((dot(x, x) - dot(a, a)).abs() < 1e-14);
+            assert!((dot(x, k) - dot(a, k)).abs() < 1e-14);
+        }
+    }
 }

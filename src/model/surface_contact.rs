@@ -28,8 +28,11 @@ pub struct SurfacePair {
     /// What `areas` measure.
     pub measure: SlaveMeasure,
     pub master: SurfaceMaster,
-    /// `ε_N`, `ε_T` per unit area, `μ`.
+    /// `ε_N`, `ε_T` per unit area, `μ` (with a `friction` history: its largest value).
     pub law: ContactLaw,
+    /// `μ(t)` where the friction coefficient changes over the run (frictionless while a body
+    /// is pressed, then rough while it is twisted); `None`: `law.mu` throughout.
+    pub friction: Option<Ramp>,
     pub transfer: Scheme,
     /// Slaves farther than this from every facet (or the rigid surface) are not paired.
     pub search_radius: f64,
@@ -43,6 +46,16 @@ impl SurfacePair {
             eps_n: self.law.eps_n * a,
             eps_t: self.law.eps_t * a,
             mu: self.law.mu,
+        }
+    }
+
+    /// The law of slave `is` at time `t`: [`Self::law_of`] with `μ(t)` where the pair has a
+    /// friction history.
+    pub fn law_at(&self, is: usize, t: f64) -> ContactLaw {
+        let law = self.law_of(is);
+        match &self.friction {
+            Some(mu) => ContactLaw { mu: mu.at(t), ..law },
+            None => law,
         }
     }
 }

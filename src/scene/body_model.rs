@@ -150,13 +150,10 @@ pub(super) fn fix_axis(cx: &Ctx, m: &mut Model, end: f64) -> Result<(), SceneErr
                 return Err(refuse("has a skew support"));
             }
             match m.prescribed.iter().find(|p| p.dof == 2 * n) {
-                Some(p) if p.ramp.is_zero() => kept += 1,
+                Some(p) if p.is_zero() => kept += 1,
                 Some(_) => return Err(refuse("its x displacement is prescribed to a non-zero value")),
                 None => {
-                    m.prescribed.push(Prescribed {
-                        dof: 2 * n,
-                        ramp: Ramp::linear(0.0, end),
-                    });
+                    m.prescribed.push(Prescribed::along(2 * n, Ramp::linear(0.0, end)));
                     added += 1;
                 }
             }

@@ -9,7 +9,7 @@ use crate::element::material::{lame, Material};
 use crate::model::ContactLaw;
 use crate::model::{
     chain_neighbours, Body, ContactPair, Dim, Element, Enforcement, Master, Model, Monitor, MonitorTarget, NodalLoad,
-    Piece, Prescribed, Ramp, RigidBody, RigidShape, SkewPrescribed, Slave, Smoothing,
+    Piece, Prescribed, Ramp, RigidBody, RigidShape, SkewPrescribed, Slave, Smoothing, Turn,
 };
 use crate::problem::Problem;
 use crate::settings::SolverSettings;
@@ -406,6 +406,9 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         }
         _ => return Err(bad("invalid master")),
     };
+    if c.mu_path.is_some() {
+        return Err(bad("`mu_path` is for 3D pairs only for now: give a constant `mu`"));
+    }
     let law = contact_law(cx, c)?;
     let smoothing = c.master_smoothing.unwrap_or(match master {
         Master::Face { .. } => Smoothing::None,
@@ -437,10 +440,22 @@ pub(super) fn contact_law(cx: &Ctx, c: &ContactSpec) -> Result<ContactLaw, Scene
             "give e.g. eps_n = 1e4, and eps_t > 0 with mu > 0 (mu = 0: frictionless)",
         ));
     }
+    let mu = match &c.mu_path {
+        // the pair's law carries the largest μ: what decides whether it is frictional
+        Some(knots) => knots.iter().map(|k| k[1]).fold(0.0, f64::max),
+        None => c.mu,
+    };
+    if mu > 0.0 && c.eps_t <= 0.0 {
+        return Err(cx.err(
+            &c.name,
+            format!("contact `{}`: mu_path reaches μ = {mu} but eps_t = {}", c.name, c.eps_t),
+            "give eps_t > 0 with a rough mu_path",
+        ));
+    }
     Ok(ContactLaw {
         eps_n: c.eps_n,
         eps_t: c.eps_t,
-        mu: c.mu,
+        mu,
     })
 }
 

@@ -134,6 +134,16 @@ fn solid_mesh(src: &SceneSource, b: &super::types::BodySpec) -> Result<Option<Bo
             elements,
             grading,
         } => Some(BoxMesh::new(*origin, *size, *elements, *grading)),
+        MeshSpec::HemisphereShell {
+            centre,
+            radius,
+            elements,
+        } => Some(crate::model::shell_mesh::hemisphere_shell(
+            *centre,
+            *radius,
+            elements[0],
+            elements[1],
+        )),
         MeshSpec::Gmsh3d { file } => {
             let g = super::mesh::gmsh_solid(src, b, file)?;
             Some(BoxMesh {

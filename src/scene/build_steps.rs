@@ -154,7 +154,8 @@ pub(in crate::scene) fn add_fixes<S: Dim>(
                 continue;
             }
             for &c in &f.components {
-                let dof = S::D * n + comp_of::<S>(cx, c, &f.body)?;
+                let k = comp_of::<S>(cx, c, &f.body)?;
+                let dof = S::D * n + k;
                 if fixed[dof] {
                     return Err(twice(&format!("component {c:?} is prescribed twice")));
                 }
@@ -162,11 +163,34 @@ pub(in crate::scene) fn add_fixes<S: Dim>(
                 m.prescribed.push(Prescribed {
                     dof,
                     ramp: ramp(&f.value, end),
+                    turn: turn_of(cx, f, &label(i, f), m.nodes[n].as_ref(), k, end)?,
                 });
             }
         }
     }
     Ok(())
+}
+
+/// The turn of a node at `x` (its component `k`) that fix `f` prescribes, if it turns its
+/// nodes: 3D only, the axis made unit, the angle in radians.
+fn turn_of(cx: &Ctx, f: &FixSpec, label: &str, x: &[f64], k: usize, end: f64) -> Result<Option<Turn>, SceneError> {
+    let Some(t) = &f.turn else { return Ok(None) };
+    if x.len() != 3 {
+        return Err(cx.err(
+            f.name.as_deref().unwrap_or(&f.body),
+            format!("{label}: a `turn` in a 2D model"),
+            "turns are 3D only: prescribe the components' histories instead",
+        ));
+    }
+    let len = t.axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let mut angle = ramp(&t.angle_deg, end);
+    angle.knots.iter_mut().for_each(|kn| kn.1 = kn.1.to_radians());
+    Ok(Some(Turn {
+        angle,
+        axis: t.axis.map(|a| a / len),
+        arm: std::array::from_fn(|c| x[c] - t.point[c]),
+        component: k,
+    }))
 }
 
 /// The nodal loads (`[[load]]`: a total shared equally by the selected nodes) and the body
@@ -309,7 +333,18 @@ pub(in crate::scene) fn add_monitors<S: Dim>(cx: &Ctx, s: &SceneFile, m: &mut Mo
             (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(cx, m, r)?),
             (None, Some(b), Some(sel)) => {
                 let bi = body_index(cx, m, b)?;
-                MonitorTarget::Nodes(select(cx, m, bi, sel)?)
+                let nodes = select(cx, m, bi, sel)?;
+                match mon.about {
+                    None => MonitorTarget::Nodes(nodes),
+                    Some(point) if S::D == 3 => MonitorTarget::Moment { nodes, point },
+                    Some(_) => {
+                        return Err(cx.err(
+                            &mon.label,
+                            format!("monitor `{}`: `about` (a moment) in a 2D model", mon.label),
+                            "moments are monitored in 3D only: remove `about`",
+                        ))
+                    }
+                }
             }
             _ => {
                 return Err(cx.err(

@@ -25,7 +25,7 @@ use super::types::{ContactSpec, EnforcementKind, NodeSelection, RigidSpec, Scene
 use super::SceneError;
 use crate::contact3d::transfer::Scheme;
 use crate::model::{
-    ContactLaw, Dim, Model, RigidSurface, RigidSurfaceShape, SlaveMeasure, Solid, SurfaceMaster, SurfacePair,
+    ContactLaw, Dim, Model, Ramp, RigidSurface, RigidSurfaceShape, SlaveMeasure, Solid, SurfaceMaster, SurfacePair,
     TransferKind, SECOND_PASS_SUFFIX,
 };
 use std::collections::BTreeMap;
@@ -175,6 +175,9 @@ pub(super) fn add_surface_contacts(
             measure,
             master,
             law,
+            friction: c.mu_path.as_ref().map(|k| Ramp {
+                knots: k.iter().map(|p| (p[0], p[1])).collect(),
+            }),
             transfer: scheme(cx, c)?,
             search_radius: c.search_radius.unwrap_or(2.0 * h),
         };
@@ -369,6 +372,7 @@ fn second_pass(
             facets: slave_face,
         },
         law: pair.law,
+        friction: pair.friction.clone(),
         transfer: pair.transfer,
         search_radius: pair.search_radius,
     })

@@ -71,6 +71,10 @@ pub const BUILTINS: &[Builtin] = &[
         name: "strip-channel-3d",
         text: include_str!("../../scenes/strip-channel-3d.toml"),
     },
+    Builtin {
+        name: "twisting-hemisphere",
+        text: include_str!("../../scenes/twisting-hemisphere.toml"),
+    },
 ];
 
 /// Files the built-in scenes refer to (meshes), by the name they use.

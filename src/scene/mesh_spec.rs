@@ -66,6 +66,19 @@ pub enum MeshSpec {
         #[serde(default = "unit_grading3")]
         grading: [f64; 3],
     },
+    /// Structured hexahedral mesh of a hollow hemisphere, `radius[0] ≤ |x − centre| ≤
+    /// radius[1]`, its dome below the centre (`z ≤ centre_z`): the body is 3D. The dome is
+    /// the lower half of an equiangular cubed sphere, `3 n²` cells per layer for
+    /// `elements = [n, layers]` (`n` even); node sets and faces `outer`, `inner` and `rim`
+    /// (the flat annulus at the equator), and the set `all`.
+    HemisphereShell {
+        centre: [f64; 3],
+        /// Inner and outer radius.
+        radius: [f64; 2],
+        /// `[n, layers]`: `n` cells along an edge of the cube's bottom face (even, ≥ 2),
+        /// `layers` hexahedra through the thickness.
+        elements: [usize; 2],
+    },
     /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
     /// are the body's node sets, its physical curves on the boundary its faces.
     Gmsh {
@@ -94,7 +107,10 @@ pub(super) fn unit_grading3() -> [f64; 3] {
 impl MeshSpec {
     /// Whether the mesh makes a 3D body.
     pub fn is_3d(&self) -> bool {
-        matches!(self, MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. })
+        matches!(
+            self,
+            MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. }
+        )
     }
 }
 

@@ -94,7 +94,9 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
     if first.len() < 2 || !columns.values().all(|c| levels(c) == first) {
         return None;
     }
-    if !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !l.ramp.is_zero()) {
+    // a turned node set moves each node its own way: not a plane model's load
+    let turned = m.prescribed.iter().any(|p| p.turn.is_some());
+    if turned || !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !l.ramp.is_zero()) {
         return None;
     }
     // per node and component: the prescribed ramp (`None` free), then the loads

@@ -86,7 +86,7 @@ fn symmetry_holds_only(m: &Model<Solid>, tol: f64) -> bool {
     for p in &m.prescribed {
         let (node, c) = (p.dof / 3, p.dof % 3);
         if c < 2 {
-            if !p.ramp.is_zero() || m.nodes[node][c].abs() > tol {
+            if !p.is_zero() || m.nodes[node][c].abs() > tol {
                 return false;
             }
             held[c].insert(node);

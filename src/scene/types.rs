@@ -203,6 +203,23 @@ pub struct FixSpec {
     /// Displacement history (default 0: fixed).
     #[serde(default = "zero_ramp")]
     pub value: RampSpec,
+    /// 3D: turn the nodes rigidly about an axis; each listed component then follows the turn
+    /// (plus `value`): a twisted face, a rotated grip.
+    pub turn: Option<TurnSpec>,
+}
+
+/// A rigid turn of a fix's nodes about the axis through `point` along `axis`
+/// (right-handed), by `angle_deg(t)` degrees.
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TurnSpec {
+    /// A point of the axis (in the reference configuration; it stays where it is).
+    pub point: [f64; 3],
+    /// The axis direction (not zero; made unit).
+    pub axis: [f64; 3],
+    /// The angle history in degrees: a final value reached at `t = end`, or `(t, angle)`
+    /// knots.
+    pub angle_deg: RampSpec,
 }
 
 fn zero_ramp() -> RampSpec {
@@ -310,6 +327,10 @@ pub struct ContactSpec {
     pub eps_n: f64,
     #[serde(default)]
     pub eps_t: f64,
+    /// 3D pairs: `μ` over time as `[t, μ]` knots, linear between them and held beyond
+    /// (e.g. frictionless while a body is pressed, rough while it is twisted:
+    /// `[[0, 0], [1, 0], [1.1, 0.5]]`); given instead of `mu`.
+    pub mu_path: Option<Vec<[f64; 2]>>,
     #[serde(default)]
     pub mu: f64,
     #[serde(default = "default_transfer")]
@@ -407,6 +428,10 @@ pub struct MonitorSpec {
     /// A rigid body instead of a node set.
     pub rigid: Option<String>,
     pub component: Component,
+    /// 3D, with `body` and `nodes`: a point of an axis along `component`; the monitor then
+    /// reports the set's turn about that axis (radians, in (−π, π]) and the moment of its
+    /// forces about it, `Σ ((x − p) × f)` at the current positions: a twisting torque.
+    pub about: Option<[f64; 3]>,
     /// Multiplies displacement and force (e.g. −1 to report a downward push as positive).
     #[serde(default = "unit")]
     pub sign: f64,

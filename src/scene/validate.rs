@@ -348,6 +348,10 @@ fn limits(c: &Check, s: &SceneFile) -> R {
                 2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
             }
             MeshSpec::Box { elements, .. } => 3.0 * elements.iter().map(|&n| n as f64 + 1.0).product::<f64>(),
+            MeshSpec::HemisphereShell { elements: [n, l], .. } => {
+                let n = *n as f64;
+                3.0 * (3.0 * n * n + 2.0 * n + 1.0) * (*l as f64 + 1.0)
+            }
             MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         })
         .sum();
@@ -357,6 +361,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
                 elements[0] as f64 * elements[1] as f64
             }
             MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
+            MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
             MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         };
         n(a.1).total_cmp(&n(b.1))
@@ -372,6 +377,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             format!("[{}, {}]", elements[0], elements[1])
         }
         MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
+        MeshSpec::HemisphereShell { elements, .. } => format!("[{}, {}]", elements[0], elements[1]),
         MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {
@@ -408,6 +414,9 @@ fn contact(c: &Check, i: usize, k: &ContactSpec, min_h: f64, extent: f64) -> R {
     c.positive(&sub(&p, "eps_n"), &format!("{key}.eps_n"), k.eps_n)?;
     c.non_negative(&sub(&p, "eps_t"), &format!("{key}.eps_t"), k.eps_t)?;
     c.non_negative(&sub(&p, "mu"), &format!("{key}.mu"), k.mu)?;
+    if let Some(knots) = &k.mu_path {
+        mu_path(c, &sub(&p, "mu_path"), &key, knots, k.mu)?;
+    }
     if k.mu > 0.0 && k.eps_t == 0.0 {
         return Err(c.fail(
             &sub(&p, "eps_t"),
@@ -440,3 +449,27 @@ fn contact(c: &Check, i: usize, k: &ContactSpec, min_h: f64, extent: f64) -> R {
 #[cfg(test)]
 #[path = "validate_tests.rs"]
 mod tests;
+
+/// A friction history: knots sorted in time, each `μ ≥ 0`, given instead of `mu`.
+fn mu_path(c: &Check, p: &[P], key: &str, knots: &[[f64; 2]], mu: f64) -> R {
+    if mu != 0.0 {
+        return Err(c.fail(
+            p,
+            &format!("{key}.mu_path"),
+            "[…]",
+            &format!("is given with mu = {mu}: the friction is either constant or a history"),
+            "remove `mu`, or remove `mu_path`",
+        ));
+    }
+    c.ramp(
+        p,
+        &format!("{key}.mu_path"),
+        &RampSpec::Path(knots.to_vec()),
+        &mut Extent::default(),
+    )?;
+    for (i, knot) in knots.iter().enumerate() {
+        let at: Vec<P> = p.iter().copied().chain([P::I(i)]).collect();
+        c.non_negative(&at, &format!("{key}.mu_path[{i}].value"), knot[1])?;
+    }
+    Ok(())
+}

@@ -3,7 +3,7 @@
 //! skew `direction`, exactly one of them.
 
 use super::{sub, Check, Extent, P, R};
-use crate::scene::types::{FixSpec, SceneFile};
+use crate::scene::types::{FixSpec, SceneFile, TurnSpec};
 
 pub(super) fn check(c: &Check, s: &SceneFile, ext: &mut Extent) -> R {
     names(c, "fix", s.fixes.iter().map(|f| f.name.as_deref()))?;
@@ -14,6 +14,9 @@ pub(super) fn check(c: &Check, s: &SceneFile, ext: &mut Extent) -> R {
         c.selection(&sub(&p, "nodes"), &format!("{key}.nodes"), &f.nodes)?;
         c.ramp(&sub(&p, "value"), &format!("{key}.value"), &f.value, ext)?;
         kind(c, &p, &key, f)?;
+        if let Some(t) = &f.turn {
+            turn(c, &sub(&p, "turn"), &format!("{key}.turn"), t, f.direction.is_some())?;
+        }
     }
     for (i, l) in s.loads.iter().enumerate() {
         let p = [P::K("load"), P::I(i)];
@@ -94,4 +97,37 @@ fn kind(c: &Check, p: &[P], key: &str, f: &FixSpec) -> R {
             Ok(())
         }
     }
+}
+
+/// A turn: a finite point, a finite non-zero axis, an angle history; not on a skew support.
+fn turn(c: &Check, p: &[P], key: &str, t: &TurnSpec, skew: bool) -> R {
+    if skew {
+        return Err(c.fail(
+            p,
+            key,
+            "turn",
+            "is given with `direction`: a skew support cannot turn",
+            "prescribe the turned components with components = [\"x\", \"y\", \"z\"]",
+        ));
+    }
+    for k in 0..3 {
+        c.finite(&sub(p, "point"), &format!("{key}.point[{k}]"), t.point[k])?;
+        c.finite(&sub(p, "axis"), &format!("{key}.axis[{k}]"), t.axis[k])?;
+    }
+    if t.axis.iter().map(|a| a * a).sum::<f64>().sqrt() < 1e-12 {
+        return Err(c.fail(
+            &sub(p, "axis"),
+            &format!("{key}.axis"),
+            format!("{:?}", t.axis),
+            "has no length: it cannot be made a unit direction",
+            "give the axis to turn about, e.g. [0, 0, 1]",
+        ));
+    }
+    // an angle, not a length: it does not widen the scene's extent
+    c.ramp(
+        &sub(p, "angle_deg"),
+        &format!("{key}.angle_deg"),
+        &t.angle_deg,
+        &mut Extent::default(),
+    )
 }

@@ -53,6 +53,11 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             elements,
             grading,
         } => box_mesh(c, mesh, key, (origin, size, elements, grading), ext),
+        MeshSpec::HemisphereShell {
+            centre,
+            radius,
+            elements,
+        } => hemisphere_shell(c, mesh, key, (centre, radius, elements), ext),
         MeshSpec::Annulus {
             centre,
             radius,
@@ -243,4 +248,51 @@ fn box_mesh(
         ));
     }
     Ok(h)
+}
+
+/// A hollow hemisphere: finite centre, `0 < inner < outer`, `n` even ≥ 2 and ≥ 1 layer;
+/// its smallest edge is at least the inner radius' share of a cell's angle or a layer.
+fn hemisphere_shell(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (centre, radius, elements): (&[f64; 3], &[f64; 2], &[usize; 2]),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    for (k, x) in centre.iter().enumerate() {
+        c.finite(&sub(mesh, "centre"), &format!("{key}.mesh.centre[{k}]"), *x)?;
+    }
+    c.positive(&sub(mesh, "radius"), &format!("{key}.mesh.radius[0]"), radius[0])?;
+    if radius[1].partial_cmp(&radius[0]) != Some(std::cmp::Ordering::Greater) || !radius[1].is_finite() {
+        return Err(c.fail(
+            &sub(mesh, "radius"),
+            &format!("{key}.mesh.radius"),
+            format!("[{}, {}]", radius[0], radius[1]),
+            "must be [inner, outer] with 0 < inner < outer",
+            "give the inner radius first",
+        ));
+    }
+    let [n, layers] = *elements;
+    if n < 2 || n % 2 == 1 || layers == 0 {
+        return Err(c.fail(
+            &sub(mesh, "elements"),
+            &format!("{key}.mesh.elements"),
+            format!("[{n}, {layers}]"),
+            "must be [n, layers] with n even and ≥ 2, layers ≥ 1",
+            "give e.g. elements = [8, 2]",
+        ));
+    }
+    ext.add(centre.iter().fold(0.0f64, |m, x| m.max(x.abs())) + radius[1]);
+    if !ext.0.is_finite() || ext.0 > MAX_COORDINATE {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("a point {:e} from the origin", ext.0),
+            &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
+            "give a smaller mesh (or change the unit of length)",
+        ));
+    }
+    // the equiangular cells span π/(2n) of arc, the narrowest by a factor cos²(π/4) = 1/2
+    let around = radius[0] * std::f64::consts::FRAC_PI_2 / n as f64 * 0.5;
+    Ok(around.min((radius[1] - radius[0]) / layers as f64))
 }

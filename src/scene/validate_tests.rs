@@ -208,3 +208,35 @@ fn a_mesh_reaching_beyond_the_coordinate_bound_is_refused() {
     );
     assert_eq!(outcome("cantilever", &["body.strip.mesh.size=[1e6, 0.5]"]), "ok");
 }
+
+#[test]
+fn a_hollow_hemisphere_a_turn_and_a_friction_history_are_checked() {
+    let h = "twisting-hemisphere";
+    refused(h, "body.hemisphere.mesh.elements=[7, 2]", &["n even", "elements"]);
+    refused(h, "body.hemisphere.mesh.elements=[8, 0]", &["layers ≥ 1"]);
+    refused(h, "body.hemisphere.mesh.radius=[1.0, 0.5]", &["0 < inner < outer"]);
+    refused(
+        h,
+        "fix.twist.turn.axis=[0.0, 0.0, 0.0]",
+        &["no length", "fix.twist.turn.axis"],
+    );
+    refused(h, "fix.twist.turn.point=[0.0, nan, 1.0]", &["fix.twist.turn.point[1]"]);
+    refused(h, "contact.interface.mu=0.3", &["mu_path", "constant or a history"]);
+    refused(
+        h,
+        "contact.interface.mu_path=[[0.0, 0.0], [1.0, -0.1]]",
+        &["mu_path[1]"],
+    );
+    refused(
+        h,
+        "contact.interface.mu_path=[[1.0, 0.0], [0.0, 0.5]]",
+        &["must not decrease"],
+    );
+    refused(h, "contact.interface.eps_t=0.0", &["eps_t"]);
+    // a friction history is 3D only for now
+    let e = outcome(
+        "crossing",
+        &["contact.point.mu=0", "contact.point.mu_path=[[0.0, 0.1]]"],
+    );
+    assert!(e.contains("3D pairs only") && e.contains("hint:"), "{e}");
+}

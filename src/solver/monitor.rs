@@ -62,6 +62,7 @@ fn record<S: Dim>(
             }
             (disp / nodes.len().max(1) as f64, force)
         }
+        MonitorTarget::Moment { nodes, point } => moment(model, asm, u, t, nodes, *point, m.component),
         MonitorTarget::Rigid(r) => {
             let travel = model.rigid[*r].offset(t)[m.component];
             // the drive's force: the negative of the contact force received
@@ -73,6 +74,40 @@ fn record<S: Dim>(
         displacement: m.sign * displacement,
         force: m.sign * force,
     }
+}
+
+/// The turn of the node set `nodes` (3D) about the axis along `c` through `p` and the
+/// moment of its forces about that axis: `θ = atan2(Σ (a × b)_c, Σ a · b)` over the nodes'
+/// arms `a = X − p` (reference) and `b = x − p` (current), across the axis; `M = Σ (b × f)_c`
+/// with `f` the node's reaction where prescribed, its applied load elsewhere.
+fn moment<S: Dim>(
+    model: &Model<S>,
+    asm: &Assembler<S>,
+    u: &[f64],
+    t: f64,
+    nodes: &[usize],
+    p: [f64; 3],
+    c: usize,
+) -> (f64, f64) {
+    let (i, j) = ((c + 1) % 3, (c + 2) % 3);
+    let (mut sin, mut cos, mut m) = (0.0, 0.0, 0.0);
+    for &n in nodes {
+        let x = model.nodes[n].as_ref();
+        let a = [x[i] - p[i], x[j] - p[j]];
+        let b = [a[0] + u[3 * n + i], a[1] + u[3 * n + j]];
+        let force = |k: usize| {
+            let d = 3 * n + k;
+            if asm.dofs.is_prescribed(d) {
+                asm.r_full[d]
+            } else {
+                model.loads.iter().filter(|l| l.dof == d).map(|l| l.ramp.at(t)).sum()
+            }
+        };
+        sin += a[0] * b[1] - a[1] * b[0];
+        cos += a[0] * b[0] + a[1] * b[1];
+        m += b[0] * force(j) - b[1] * force(i);
+    }
+    (sin.atan2(cos), m)
 }
 
 /// Sum of the contact forces rigid body `r` receives (x, y).

@@ -155,7 +155,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
         ws.watchdog.reset();
         ws.continuation.reset();
         for p in &model.prescribed {
-            state.u[p.dof] = p.ramp.at(target.t);
+            state.u[p.dof] = p.at(target.t);
         }
         let n = asm.dofs.n_free;
         ws.r.resize(n, 0.0);
