@@ -151,3 +151,38 @@ fn diff_compares_the_3d_points_field_by_field() {
     let facets = report.fields.iter().find(|d| d.field == "facet").unwrap();
     assert_eq!(facets.beyond_tolerance, 0);
 }
+
+#[test]
+fn the_csv_counts_the_closed_3d_points_and_their_crossings() {
+    use contrail::record::text::csv::CsvSink;
+    let (p, info) = common::solid_problem("slide-3d-small.toml", &format!("{SLIDE_BASE}increments = 8\n"));
+    let mut csv = CsvSink::new(Vec::new(), "csv");
+    let mut mem = Memory::default();
+    let mut fan = Fanout::default();
+    fan.sinks.push(&mut csv);
+    fan.sinks.push(&mut mem);
+    run(&p, &info, &mut fan, &AtomicBool::new(false)).unwrap();
+    drop(fan);
+    let text = String::from_utf8(csv.into_inner()).unwrap();
+    let rows: Vec<Vec<&str>> = text.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), mem.surface.len());
+    let (mut closed_total, mut crossings_total) = (0, 0);
+    for (row, points) in rows.iter().zip(&mem.surface) {
+        let closed = points
+            .iter()
+            .filter(|q| q.state != contrail::contact::law::ContactState::Open)
+            .count();
+        let crossings = points.iter().filter(|q| q.crossing).count();
+        assert_eq!(
+            (row[8].parse::<usize>().unwrap(), row[9].parse::<usize>().unwrap()),
+            (closed, crossings)
+        );
+        closed_total += closed;
+        crossings_total += crossings;
+    }
+    // they used to be 0 in 3D: only the 2D points were counted
+    assert!(
+        closed_total > 0 && crossings_total > 0,
+        "{closed_total} closed, {crossings_total} crossings"
+    );
+}

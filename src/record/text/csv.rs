@@ -19,6 +19,10 @@ impl<W: Write> CsvSink<W> {
             name: name.to_string(),
         }
     }
+    /// The writer, with everything written so far.
+    pub fn into_inner(self) -> W {
+        self.out
+    }
     fn err(&self, e: std::io::Error) -> ObserverError {
         ObserverError::new(&self.name, e)
     }
@@ -43,11 +47,11 @@ impl<W: Write> Observer for CsvSink<W> {
             .as_ref()
             .map(|m| (m.displacement, m.force))
             .unwrap_or((f64::NAN, f64::NAN));
-        let closed = view
-            .contact
-            .iter()
-            .filter(|c| c.state != crate::contact::law::ContactState::Open)
-            .count();
+        // the 2D points and the 3D (node-to-surface) points: a model has one kind or the other
+        let open = crate::contact::law::ContactState::Open;
+        let closed = view.contact.iter().filter(|c| c.state != open).count()
+            + view.surface.iter().filter(|p| p.state != open).count();
+        let crossings = view.crossings.len() + view.surface.iter().filter(|p| p.crossing).count();
         write!(
             self.out,
             "{},{:.10e},{:.10e},{:.10e},{},{},{:.10e},{:.10e},{},{}",
@@ -60,7 +64,7 @@ impl<W: Write> Observer for CsvSink<W> {
             rec.reaction_total[0],
             rec.reaction_total[1],
             closed,
-            view.crossings.len()
+            crossings
         )
         .map_err(|e| self.err(e))?;
         for m in &rec.monitors {
