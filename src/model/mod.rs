@@ -89,15 +89,10 @@ pub struct Turn {
 impl Turn {
     /// `[R(θ) a − a]_c = [(cos θ − 1)(a − k (k·a)) + sin θ (k × a)]_c`.
     pub fn displacement(&self, t: f64) -> f64 {
+        use crate::contact3d::vec3::{cross, dot};
         let (k, a, c) = (self.axis, self.arm, self.component);
         let theta = self.angle.at(t);
-        let along = k[0] * a[0] + k[1] * a[1] + k[2] * a[2];
-        let cross = [
-            k[1] * a[2] - k[2] * a[1],
-            k[2] * a[0] - k[0] * a[2],
-            k[0] * a[1] - k[1] * a[0],
-        ];
-        (theta.cos() - 1.0) * (a[c] - k[c] * along) + theta.sin() * cross[c]
+        (theta.cos() - 1.0) * (a[c] - k[c] * dot(k, a)) + theta.sin() * cross(k, a)[c]
     }
 }
 

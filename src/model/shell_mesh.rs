@@ -11,6 +11,7 @@
 
 use super::box_mesh::BoxMesh;
 use super::hex_boundary::boundary_quads;
+use crate::contact3d::vec3::{cross, dot, norm, sub};
 use std::collections::{BTreeMap, HashMap};
 
 /// The hollow hemisphere `inner ≤ |x − centre| ≤ outer`, `z ≤ centre_z`: `3 n²` cells per
@@ -33,7 +34,7 @@ pub fn hemisphere_shell(centre: [f64; 3], radius: [f64; 2], n: usize, layers: us
         }
     }
     let scale = radius[1].abs().max(1e-300);
-    let on_radius = |x: &[f64; 3], r: f64| (dist(x, &centre) - r).abs() <= 1e-9 * scale;
+    let on_radius = |x: &[f64; 3], r: f64| (norm(sub(*x, centre)) - r).abs() <= 1e-9 * scale;
     let on_rim = |x: &[f64; 3]| (x[2] - centre[2]).abs() <= 1e-9 * scale;
     let mut faces: BTreeMap<String, Vec<[usize; 4]>> = BTreeMap::new();
     for f in boundary_quads(&hexes) {
@@ -62,10 +63,6 @@ pub fn hemisphere_shell(centre: [f64; 3], radius: [f64; 2], n: usize, layers: us
         node_sets,
         faces,
     }
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// The unit directions of the lower half of the equiangular cubed sphere and its cells,
@@ -98,25 +95,18 @@ fn lower_cubed_sphere(n: usize) -> (Vec<[f64; 3]>, Vec<[usize; 4]>) {
         }
     }
     for c in &mut cells {
-        if outward_flux(&dirs, c) < 0.0 {
+        if outward_flux(c.map(|v| dirs[v])) < 0.0 {
             *c = [c[0], c[3], c[2], c[1]];
         }
     }
     (dirs, cells)
 }
 
-/// `((x₁ − x₀) × (x₃ − x₀)) · x̄` for a cell of unit directions: positive when it turns
-/// counter-clockwise seen from outside the sphere.
-fn outward_flux(dirs: &[[f64; 3]], c: &[usize; 4]) -> f64 {
-    let x = c.map(|v| dirs[v]);
-    let u: [f64; 3] = std::array::from_fn(|k| x[1][k] - x[0][k]);
-    let v: [f64; 3] = std::array::from_fn(|k| x[3][k] - x[0][k]);
-    let n = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    (0..3).map(|k| n[k] * (x[0][k] + x[1][k] + x[2][k] + x[3][k])).sum()
+/// `((x₁ − x₀) × (x₃ − x₀)) · Σ xᵢ` for a quadrilateral about a centre at the origin:
+/// positive when it turns counter-clockwise seen from outside.
+fn outward_flux(x: [[f64; 3]; 4]) -> f64 {
+    let normal = cross(sub(x[1], x[0]), sub(x[3], x[0]));
+    dot(normal, std::array::from_fn(|k| x[0][k] + x[1][k] + x[2][k] + x[3][k]))
 }
 
 #[cfg(test)]
@@ -138,7 +128,7 @@ mod tests {
             assert!((m.nodes[v][2] - 2.0).abs() < 1e-12);
         }
         for &v in &m.node_sets["outer"] {
-            assert!((dist(&m.nodes[v], &[0.5, -1.0, 2.0]) - 1.0).abs() < 1e-12);
+            assert!((norm(sub(m.nodes[v], [0.5, -1.0, 2.0])) - 1.0).abs() < 1e-12);
         }
         let mut volume = 0.0;
         for h in &m.hexes {
@@ -158,18 +148,10 @@ mod tests {
         for (name, quads) in &m.faces {
             for q in quads {
                 let x = q.map(|v| m.nodes[v]);
-                let u: [f64; 3] = std::array::from_fn(|k| x[1][k] - x[0][k]);
-                let v: [f64; 3] = std::array::from_fn(|k| x[3][k] - x[0][k]);
-                let normal = [
-                    u[1] * v[2] - u[2] * v[1],
-                    u[2] * v[0] - u[0] * v[2],
-                    u[0] * v[1] - u[1] * v[0],
-                ];
-                let c: [f64; 3] = std::array::from_fn(|k| (x[0][k] + x[1][k] + x[2][k] + x[3][k]) / 4.0);
                 let along = match name.as_str() {
-                    "rim" => normal[2],
-                    "outer" => (0..3).map(|k| normal[k] * c[k]).sum(),
-                    _ => -(0..3).map(|k| normal[k] * c[k]).sum::<f64>(),
+                    "rim" => cross(sub(x[1], x[0]), sub(x[3], x[0]))[2],
+                    "outer" => outward_flux(x),
+                    _ => -outward_flux(x),
                 };
                 assert!(along > 0.0, "face `{name}` points inwards");
             }

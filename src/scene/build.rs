@@ -428,9 +428,17 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
     })
 }
 
-/// The law of a pair (2D or 3D): `eps_n > 0`, `mu ≥ 0`, and `eps_t > 0` when `mu > 0`.
+/// The law of a pair (2D or 3D): `eps_n > 0`, `mu ≥ 0` (every value of a `mu_path`), and
+/// `eps_t > 0` when `mu > 0`. With a `mu_path` the law carries its largest `μ`: what
+/// decides whether the pair is frictional.
 pub(super) fn contact_law(cx: &Ctx, c: &ContactSpec) -> Result<ContactLaw, SceneError> {
-    if c.eps_n <= 0.0 || c.eps_t < 0.0 || c.mu < 0.0 || (c.mu > 0.0 && c.eps_t <= 0.0) {
+    let (mu, lowest) = match &c.mu_path {
+        Some(knots) => knots.iter().fold((0.0, f64::INFINITY), |(hi, lo), k| {
+            (f64::max(hi, k[1]), f64::min(lo, k[1]))
+        }),
+        None => (c.mu, c.mu),
+    };
+    if c.eps_n <= 0.0 || c.eps_t < 0.0 || lowest < 0.0 || (mu > 0.0 && c.eps_t <= 0.0) {
         return Err(cx.err(
             &c.name,
             format!(
@@ -438,18 +446,6 @@ pub(super) fn contact_law(cx: &Ctx, c: &ContactSpec) -> Result<ContactLaw, Scene
                 c.name
             ),
             "give e.g. eps_n = 1e4, and eps_t > 0 with mu > 0 (mu = 0: frictionless)",
-        ));
-    }
-    let mu = match &c.mu_path {
-        // the pair's law carries the largest μ: what decides whether it is frictional
-        Some(knots) => knots.iter().map(|k| k[1]).fold(0.0, f64::max),
-        None => c.mu,
-    };
-    if mu > 0.0 && c.eps_t <= 0.0 {
-        return Err(cx.err(
-            &c.name,
-            format!("contact `{}`: mu_path reaches μ = {mu} but eps_t = {}", c.name, c.eps_t),
-            "give eps_t > 0 with a rough mu_path",
         ));
     }
     Ok(ContactLaw {

@@ -122,6 +122,7 @@ pub(in crate::scene) fn add_fixes<S: Dim>(
     let label = |i: usize, f: &FixSpec| f.name.clone().map_or(format!("[[fix]] {i}"), |n| format!("fix `{n}`"));
     for (i, f) in s.fixes.iter().enumerate() {
         let bi = body_index(cx, m, &f.body)?;
+        let turn = turn_of::<S>(cx, f, &label(i, f), end)?;
         for n in select(cx, m, bi, &f.nodes)? {
             let twice = |what: &str| {
                 cx.err(
@@ -163,7 +164,15 @@ pub(in crate::scene) fn add_fixes<S: Dim>(
                 m.prescribed.push(Prescribed {
                     dof,
                     ramp: ramp(&f.value, end),
-                    turn: turn_of(cx, f, &label(i, f), m.nodes[n].as_ref(), k, end)?,
+                    turn: turn.as_ref().map(|(angle, axis, point)| {
+                        let x = m.nodes[n].as_ref();
+                        Turn {
+                            angle: angle.clone(),
+                            axis: *axis,
+                            arm: std::array::from_fn(|c| x[c] - point[c]),
+                            component: k,
+                        }
+                    }),
                 });
             }
         }
@@ -171,11 +180,13 @@ pub(in crate::scene) fn add_fixes<S: Dim>(
     Ok(())
 }
 
-/// The turn of a node at `x` (its component `k`) that fix `f` prescribes, if it turns its
-/// nodes: 3D only, the axis made unit, the angle in radians.
-fn turn_of(cx: &Ctx, f: &FixSpec, label: &str, x: &[f64], k: usize, end: f64) -> Result<Option<Turn>, SceneError> {
+/// The turn fix `f` prescribes, if it turns its nodes: its angle in radians, its unit axis
+/// and a point of the axis (3D only; each node's [`Turn`] adds its arm and component).
+type FixTurn = (Ramp, [f64; 3], [f64; 3]);
+
+fn turn_of<S: Dim>(cx: &Ctx, f: &FixSpec, label: &str, end: f64) -> Result<Option<FixTurn>, SceneError> {
     let Some(t) = &f.turn else { return Ok(None) };
-    if x.len() != 3 {
+    if S::D != 3 {
         return Err(cx.err(
             f.name.as_deref().unwrap_or(&f.body),
             format!("{label}: a `turn` in a 2D model"),
@@ -185,12 +196,7 @@ fn turn_of(cx: &Ctx, f: &FixSpec, label: &str, x: &[f64], k: usize, end: f64) ->
     let len = t.axis.iter().map(|a| a * a).sum::<f64>().sqrt();
     let mut angle = ramp(&t.angle_deg, end);
     angle.knots.iter_mut().for_each(|kn| kn.1 = kn.1.to_radians());
-    Ok(Some(Turn {
-        angle,
-        axis: t.axis.map(|a| a / len),
-        arm: std::array::from_fn(|c| x[c] - t.point[c]),
-        component: k,
-    }))
+    Ok(Some((angle, t.axis.map(|a| a / len), t.point)))
 }
 
 /// The nodal loads (`[[load]]`: a total shared equally by the selected nodes) and the body
