@@ -16,7 +16,7 @@
 //!
 //! Not refined in mesh: the built-in mesh is the one on which the press completes; a
 //! 12 × 12 block top and shells of 10 and 12 cells per cube edge stop in the press
-//! (measured 2026-11-28, docs/gallery.md), as does the twist at 68.6° on this mesh — the
+//! (measured 2026-11-28, docs/gallery.md), as does the twist at 67.1° on this mesh — the
 //! faceted master's normal jumps at its edges. Release tier (about 1 minute).
 
 use contrail::record::Memory;
