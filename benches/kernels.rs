@@ -117,7 +117,7 @@ fn surface_point(mu: f64) -> PointProblem3 {
         [0.9, 1.0, 0.2],
         [-1.1, 0.8, -0.05],
     ];
-    let p = Facet::<f64> { x: facet }.point([0.2, -0.3]).unwrap();
+    let p = Facet::<f64>::flat(facet).point([0.2, -0.3]).unwrap();
     let slave = std::array::from_fn(|c| p.rho[c] - 0.01 * p.normal[c]);
     let law = ContactLaw {
         eps_n: 2.1e3,

@@ -277,7 +277,12 @@ fn what_3d_contact_does_not_have_is_refused_naming_the_key() {
         &glue("enforcement = \"augmented\""),
         &["enforcement = \"augmented\"", "3D"],
     );
-    refused(&glue("master_smoothing = \"hermite\""), &["`master_smoothing`"]);
+    refused(
+        &glue("master_smoothing = \"hermite\""),
+        &["`master_smoothing = \"hermite\"`", "nagata"],
+    );
+    // a 3D face is smoothed by Nagata patches
+    assert!(build(&glue("master_smoothing = \"nagata\"")).is_ok());
     refused(&glue("transfer = \"spatial\""), &["transfer = \"spatial\"", "3D"]);
     let plane = r#"
 [[rigid]]

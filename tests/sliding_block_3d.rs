@@ -39,7 +39,13 @@
 //! | coarse 45° (vertices)| 33         | 0.29987      | +0.444 %| 0.07°  | 106    | 113 (37)           | 3.0  |
 //! | straightforward 30°  | 33         | 0.24430      | −84.2 % | 97.7°  | 135    | 131 (4)            | 3.0  |
 //!
-//! No history was lost in any case. In each point's frame the ratio is μ to 1.2e-7: what is
+//! | coarse 30°, Nagata  | 33         | 0.29990      | −0.214 %| 0.09°  | 83     | 133 (2)            | 1.4  |
+//! | fine 30°, Nagata    | 33         | 0.29988      | −0.145 %| 0.07°  | 105    | 508 (36)           | 8.1  |
+//!
+//! The Nagata rows (`master_smoothing = "nagata"`, measured 2026-11-28, the machine
+//! running beside one single-threaded contrail run) have the slab's face as patches through its nodes: the worst ratio is
+//! nearer μ and Newton needs fewer iterations than on the bilinear facets; each point's
+//! own-frame ratio is μ to 1.1e-6 (asserted: 2e-6). No history was lost in any case. In each point's frame the ratio is μ to 1.2e-7: what is
 //! left of `F_t/F_n − μ` is the slab's deformed surface (its normals tilt by up to 5e-3 under
 //! the block, so `F_z` and `(F_x, F_y)` mix normal and friction parts), and it halves from the
 //! coarse to the fine mesh; the step does not change it (sliding is rate-independent). The
@@ -72,6 +78,8 @@ struct Case {
     block: [usize; 3],
     increments: usize,
     transfer: &'static str,
+    /// The slab's face: `"none"` (bilinear facets) or `"nagata"` (patches).
+    smoothing: &'static str,
 }
 
 const COARSE: Case = Case {
@@ -80,6 +88,7 @@ const COARSE: Case = Case {
     block: [4, 4, 2],
     increments: 33,
     transfer: "continuous",
+    smoothing: "none",
 };
 
 const FINE: Case = Case {
@@ -88,6 +97,7 @@ const FINE: Case = Case {
     block: [7, 7, 3],
     increments: 33,
     transfer: "continuous",
+    smoothing: "none",
 };
 
 fn scene(c: &Case) -> String {
@@ -127,6 +137,7 @@ eps_n = 1.0e5
 eps_t = 1.0e5
 mu = {MU}
 transfer = "{}"
+master_smoothing = "{}"
 [stepping]
 end = {END}
 increments = {n}
@@ -134,7 +145,8 @@ increments = {n}
         top("z", [0.0, -0.002, -0.002]),
         top("x", [0.0, 0.0, dx]),
         top("y", [0.0, 0.0, dy]),
-        c.transfer
+        c.transfer,
+        c.smoothing
     )
 }
 
@@ -222,9 +234,10 @@ fn measure(name: &str, c: &Case) -> Sliding {
     let s = run(c);
     let mean = s.ratios.iter().sum::<f64>() / s.ratios.len() as f64;
     println!(
-        "{name} ({}, {}°): slab {:?} block {:?}, {} increments: F_t/F_n mean {mean:.5}, worst {:+.3} % over {} \
+        "{name} ({}, {}, {}°): slab {:?} block {:?}, {} increments: F_t/F_n mean {mean:.5}, worst {:+.3} % over {} \
          steady increments (local {:.1e}); angle ≤ {:.3}°; {} Newton iterations; {} crossings ({} over a vertex), {} lost; {:.2} s",
         c.transfer,
+        c.smoothing,
         c.angle,
         c.slab,
         c.block,
@@ -249,7 +262,10 @@ fn check(name: &str, c: &Case) {
     assert!(s.ratios.len() >= 30, "{} steady increments", s.ratios.len());
     assert_eq!(s.not_slipping, 0, "closed points sticking in the steady phase");
     assert!(worst.abs() <= 1.0, "F_t/F_n off μ by {worst:.3} %");
-    assert!(s.local <= 1e-6, "Σ|t|/Σ N off μ by {:.3e} (relative)", s.local);
+    // on Nagata patches the point's frame is the patch's at its converged ξ (measured
+    // 6.1e-7 coarse, 1.06e-6 fine: the Newton tolerance's share, not a law's)
+    let local_tol = if c.smoothing == "nagata" { 2e-6 } else { 1e-6 };
+    assert!(s.local <= local_tol, "Σ|t|/Σ N off μ by {:.3e} (relative)", s.local);
     assert!(s.angle <= 0.5, "friction force {:.3}° off the drag", s.angle);
     let points = (c.block[0] + 1) * (c.block[1] + 1);
     assert!(
@@ -288,6 +304,27 @@ fn fine_mesh_slides_at_coulombs_ratio() {
 #[cfg_attr(debug_assertions, ignore = "release tier")]
 fn fine_mesh_at_the_half_step_slides_at_coulombs_ratio() {
     check("fine, half step", &Case { increments: 66, ..FINE });
+}
+
+/// The slab's face as Nagata patches (`master_smoothing = "nagata"`): each point's normal
+/// follows the patch instead of its facet's plane; the ratio and the crossings as bilinear.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "release tier")]
+fn nagata_patches_slide_at_coulombs_ratio_on_both_meshes() {
+    check(
+        "coarse, nagata",
+        &Case {
+            smoothing: "nagata",
+            ..COARSE
+        },
+    );
+    check(
+        "fine, nagata",
+        &Case {
+            smoothing: "nagata",
+            ..FINE
+        },
+    );
 }
 
 /// At 45° over the slab's square facets, the block's slave nodes that start on slab vertices

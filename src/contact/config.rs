@@ -79,7 +79,8 @@ impl Config<'_> {
                     next[k].map(|n| segments[n][1]),
                 ];
                 match pair.smoothing {
-                    Smoothing::None => SegNodes::Linear(segments[k]),
+                    // (a 2D scene refuses `nagata`: a 3D face's patches)
+                    Smoothing::None | Smoothing::Nagata => SegNodes::Linear(segments[k]),
                     Smoothing::Hermite => SegNodes::Smooth(Smoothing::Hermite, smooth),
                     Smoothing::Bezier => SegNodes::Smooth(Smoothing::Bezier, smooth),
                 }

@@ -188,6 +188,7 @@ mod tests {
     fn point() -> FacetPoint<f64> {
         let f = Facet::<f64> {
             x: [[0.0, 0.0, 0.0], [1.2, 0.1, 0.0], [1.1, 0.9, 0.1], [-0.1, 1.0, 0.0]],
+            bend: None,
         };
         f.point([0.2, -0.3]).unwrap()
     }

@@ -6,6 +6,7 @@
 use super::decision::SurfaceRule;
 use super::locate::locate;
 use super::master::{facet_point, plane_facet, round_point, PointLocal, Round};
+use super::nagata::FacetBends;
 use super::point::{PointEval, DOFS};
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD, FREE_BORDER_ROUNDOFF};
 use super::surface::Facet;
@@ -41,6 +42,8 @@ pub struct SearchStart<'a> {
     pub facet: Option<usize>,
     pub closed_at_last_iterate: bool,
     pub borders: &'a [[bool; 4]],
+    /// The master face's bends where its facets are Nagata patches.
+    pub bends: Option<&'a FacetBends>,
 }
 
 /// Pair and evaluate slave `is` of `pair`, its state decided by `decider` (the rule and
@@ -82,17 +85,30 @@ fn on_facets(
     let origin = cfg.model.nodes[node];
     let mut out = Evaluated::unpaired();
     let grid = search.grid.expect("a facet master has a grid");
-    let Some(f) = locate(cfg, facets, grid, (node, origin), search.facet, pair.search_radius) else {
+    let bends = search.bends;
+    let Some(f) = locate(
+        cfg,
+        (facets, bends),
+        grid,
+        (node, origin),
+        search.facet,
+        pair.search_radius,
+    ) else {
         return out;
     };
     out.now.facet = Some(f);
-    let facet_b = cfg.facet_about(&facets[f], origin);
+    let facet_at = |f: usize| {
+        let x = cfg.facet_about(&facets[f], origin);
+        Facet {
+            x,
+            bend: bends.map(|b| b.of(f)),
+        }
+    };
+    let facet_now = facet_at(f);
+    let facet_b = facet_now.x;
     let carried = match (hist.history.filter(|_| hist.closed), hist.facet) {
         (Some(h), Some(a)) if a != f => {
-            let facet_a = Facet {
-                x: cfg.facet_about(&facets[a], origin),
-            };
-            let facet_now = Facet { x: facet_b };
+            let facet_a = facet_at(a);
             let carried = transfer(pair.transfer, &facet_a, &h, &facet_now).ok();
             out.now.history_lost = carried.is_none();
             if let (Some(to), false) = (carried, pair.transfer == Scheme::Continuous) {
@@ -111,7 +127,7 @@ fn on_facets(
     let x_s = cfg.node_about(node, origin);
     let law = pair.law_at(is, cfg.t);
     out.now.frictional = carried.is_some() && law.mu > 0.0;
-    let Ok(e) = facet_point(law, (x_s, facet_b), carried, decider, local) else {
+    let Ok(e) = facet_point(law, (x_s, facet_b, facet_now.bend), carried, decider, local) else {
         out.now.facet = None;
         return out;
     };
@@ -156,7 +172,7 @@ fn on_rigid(
             let facet = plane_facet(point, normal, plane_half, offset, origin);
             let history = hist.history.filter(|_| hist.closed);
             out.now.frictional = history.is_some() && law.mu > 0.0;
-            let Ok(e) = facet_point(law, (x_s, facet), history, decider, local) else {
+            let Ok(e) = facet_point(law, (x_s, facet, None), history, decider, local) else {
                 return out;
             };
             local.keep_slave();

@@ -1,6 +1,7 @@
 //! Which facet of a deformable master face a slave point is paired with: the nearest one
 //! (see [`locate`]), among the candidates of the face's search grid.
 
+use super::nagata::FacetBends;
 use super::projection::{project, INSIDE_TOLERANCE};
 use super::search::FacetGrid;
 use super::surface::Facet;
@@ -20,10 +21,11 @@ use super::vec3::{norm, sub};
 /// border of a narrow facet it rests on may project inside, or less far outside in `ξ`, a
 /// long facet meeting that one at an edge, whose plane is far away. The projections are
 /// computed about the slave's reference position `origin` (as the kernels are), so that a
-/// model far from the origin pairs as it does near it.
+/// model far from the origin pairs as it does near it. With `bends`, the facets are the
+/// face's Nagata patches ([`super::nagata`]).
 pub fn locate(
     cfg: &SurfaceConfig,
-    facets: &[[usize; 4]],
+    (facets, bends): (&[[usize; 4]], Option<&FacetBends>),
     grid: &FacetGrid,
     (node, origin): (usize, [f64; 3]),
     start: Option<usize>,
@@ -31,8 +33,10 @@ pub fn locate(
 ) -> Option<usize> {
     let x = cfg.node_about(node, origin);
     let try_facet = |f: usize| -> Option<FacetScore> {
+        let corners = cfg.facet_about(&facets[f], origin);
         let facet = Facet {
-            x: cfg.facet_about(&facets[f], origin),
+            x: corners,
+            bend: bends.map(|b| b.of(f)),
         };
         let p = project(&facet, x).ok()?;
         let excess = p.point.xi.iter().map(|v| v.abs() - 1.0).fold(0.0, f64::max);

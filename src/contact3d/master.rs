@@ -11,7 +11,7 @@
 use super::decision::{self, SurfaceRule};
 use super::point::{History, PointEval, PointProblem, SurfaceLinearization, DOFS, TOUCH};
 use super::projection::{Location, Projection, ProjectionError};
-use super::surface::FacetPoint;
+use super::surface::{Bend, FacetPoint};
 use super::vec3::{add, cross, dot, norm, scale, sub};
 use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
@@ -160,16 +160,17 @@ pub fn round_point(
 }
 
 /// Evaluate the facet kernel: slave `x_s` and facet corners `facet` (about the slave's
-/// origin), the history transferred to this facet, the state decided by `rule` (`warm`: by
+/// origin) with its bend (`None`: bilinear), the history transferred to this facet, the state decided by `rule` (`warm`: by
 /// the force unknowns alone); the local arrays into `out` (15 DOFs).
 pub fn facet_point(
     law: ContactLaw,
-    (x_s, facet): ([f64; 3], [[f64; 3]; 4]),
+    (x_s, facet, bend): ([f64; 3], [[f64; 3]; 4], Option<Bend>),
     history: Option<History>,
     (rule, warm): (SurfaceRule, bool),
     out: &mut PointLocal,
 ) -> Result<PointEval<f64>, ProjectionError> {
     let mut problem = PointProblem::new(law, [x_s, facet[0], facet[1], facet[2], facet[3]]);
+    problem.bend = bend;
     problem.history = history;
     problem.rule = rule;
     problem.warm = warm;
@@ -237,7 +238,7 @@ mod tests {
     fn a_plane_facet_has_the_plane_normal_and_projects_the_point_inside() {
         let n = [0.0, 0.6, 0.8];
         let f = plane_facet([1.0, 2.0, 3.0], n, 10.0, [0.0, 0.0, 0.5], [1.0, 2.0, 3.0]);
-        let p = Facet { x: f }.point([0.3, -0.2]).unwrap();
+        let p = Facet::flat(f).point([0.3, -0.2]).unwrap();
         for (got, want) in p.normal.iter().zip(n) {
             assert!((got - want).abs() < 1e-14);
         }
@@ -247,7 +248,14 @@ mod tests {
             mu: 0.0,
         };
         let mut out = PointLocal::default();
-        let e = facet_point(law, ([0.2, 0.1, 0.3], f), None, (SurfaceRule::Penalty, false), &mut out).unwrap();
+        let e = facet_point(
+            law,
+            ([0.2, 0.1, 0.3], f, None),
+            None,
+            (SurfaceRule::Penalty, false),
+            &mut out,
+        )
+        .unwrap();
         assert_eq!(e.projection.location, Location::Inside);
         // the offset moved the plane by 0.5 along z: gap = (x − c)·n
         let gap = dot(sub([0.2, 0.1, 0.3], [0.0, 0.0, 0.5]), n);

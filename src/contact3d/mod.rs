@@ -1,6 +1,7 @@
 //! 3D node-to-surface frictional contact (issue "Three dimensions").
 //!
-//! - [`surface`]: a 4-node bilinear master facet, `ρ(ξ¹, ξ²)`, `ρ_α`, `a_αβ`, `a^αβ`, `n`,
+//! - [`surface`]: a 4-node master facet, bilinear or bent ([`nagata`]: smooth patches from
+//!   nodal normals), `ρ(ξ¹, ξ²)`, `ρ_α`, `a_αβ`, `a^αβ`, `n`,
 //!   `h_αβ`;
 //! - [`projection`]: closest-point projection by Newton in `(ξ¹, ξ²)`, typed outcomes;
 //! - [`point`]: penalty normal force, Coulomb friction by return mapping with the surface
@@ -23,6 +24,7 @@ pub mod decision;
 pub mod evaluate;
 pub mod locate;
 pub mod master;
+pub mod nagata;
 pub mod point;
 pub mod projection;
 pub mod search;

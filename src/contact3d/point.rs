@@ -32,7 +32,7 @@
 
 use super::decision::{self, SurfaceRule};
 use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
-use super::surface::{Facet, FacetPoint};
+use super::surface::{Bend, Facet, FacetPoint};
 use super::variations::variations;
 use super::vec3::{Scalar, V3};
 use crate::contact::law::ContactState;
@@ -70,6 +70,9 @@ pub struct PointProblem {
     pub law: ContactLaw,
     /// Current positions: slot 0 the slave, 1–4 the facet's nodes.
     pub x: [[f64; 3]; NODES],
+    /// The facet's bend into a Nagata patch ([`super::nagata`]; data, not differentiated);
+    /// `None`: bilinear.
+    pub bend: Option<Bend>,
     /// `None`: the point was open at the last converged increment.
     pub history: Option<History>,
     /// Newton's settings of the projection (its start is replaced by `ξ_(n)` when there is
@@ -116,6 +119,7 @@ impl PointProblem {
         PointProblem {
             law,
             x,
+            bend: None,
             history: None,
             projection: ProjectionOptions::default(),
             rule: SurfaceRule::Penalty,
@@ -128,6 +132,7 @@ impl PointProblem {
     pub fn evaluate<S: Scalar>(&self, q: &[V3<S>; NODES]) -> Result<PointEval<S>, ProjectionError> {
         let facet = Facet {
             x: [q[1], q[2], q[3], q[4]],
+            bend: self.bend,
         };
         let mut opts = self.projection;
         if let Some(h) = self.history {
@@ -224,7 +229,7 @@ impl PointProblem {
         let e = self.evaluate_f64()?;
         r.fill(0.0);
         if e.state != ContactState::Open {
-            let var = variations(&e.projection);
+            let var = variations(&e.projection, self.bend.as_ref());
             let (n, t) = (e.normal_force, e.traction);
             for (i, ri) in r.iter_mut().enumerate() {
                 *ri = -n * var.gap[i] - t[0] * var.xi[0][i] - t[1] * var.xi[1][i];
@@ -277,7 +282,7 @@ impl PointProblem {
             std::array::from_fn(|j| g[j])
         };
         // ∇ζ, ∇ξ^α in closed form; their dual parts are ∇²ζ, ∇²ξ^α
-        let var = variations(&e.projection);
+        let var = variations(&e.projection, self.bend.as_ref());
         let gz: [f64; DOFS] = var.gap.map(|s| s.re);
         let gx: [[f64; DOFS]; 2] = var.xi.map(|g| g.map(|s| s.re));
         let (n_bar, t_bar) = match self.rule.forces() {

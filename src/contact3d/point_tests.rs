@@ -38,12 +38,32 @@ pub(super) fn problem(warped: bool, d: f64, history: Option<History>, law: Conta
     )
 }
 
+/// The warped facet bent into a Nagata patch with nodal normals tilted off its own normal
+/// (the slave placed off the patch).
+fn bent(d: f64, history: Option<History>, law: ContactLaw) -> PointProblem {
+    let x = super::projection_tests::warped().x;
+    let tilt = [[-0.3, -0.3, 1.0], [0.3, -0.2, 1.0], [0.25, 0.3, 1.0], [-0.3, 0.2, 1.0]];
+    let normals = tilt.map(|n| super::vec3::scale(n, 1.0 / super::vec3::norm(n)));
+    on_bent(x, Some(super::nagata::bend_of(&normals)), d, history, law)
+}
+
 fn on(facet: [[f64; 3]; 4], d: f64, history: Option<History>, law: ContactLaw) -> PointProblem {
-    let f = super::surface::Facet::<f64> { x: facet };
+    on_bent(facet, None, d, history, law)
+}
+
+fn on_bent(
+    facet: [[f64; 3]; 4],
+    bend: Option<super::surface::Bend>,
+    d: f64,
+    history: Option<History>,
+    law: ContactLaw,
+) -> PointProblem {
+    let f = super::surface::Facet::<f64> { x: facet, bend };
     let p = f.point([0.2, -0.3]).unwrap();
     let slave = std::array::from_fn(|c| p.rho[c] + d * p.normal[c]);
     PointProblem {
         history,
+        bend,
         ..PointProblem::new(law, [slave, facet[0], facet[1], facet[2], facet[3]])
     }
 }
@@ -87,7 +107,8 @@ fn fd_error(p: &PointProblem, expect: ContactState) -> f64 {
 
 /// Tangent = central finite differences of the residual (relative to max |K|, ≤ 1e-6) in
 /// every state — open, first touch (stick without history), frictionless slip, stick with
-/// a history, slip — on a flat facet and on a warped one (curvature terms `h_12`, `∇²ξ`).
+/// a history, slip — on a flat facet, on a warped one (curvature terms `h_12`, `∇²ξ`) and on
+/// that one bent into a Nagata patch (a full `h_αβ`; the bend's normals held fixed).
 /// The open point has `r = K = 0` (exactly). Measured errors are printed.
 #[test]
 fn tangent_matches_finite_differences_in_every_state() {
@@ -97,21 +118,26 @@ fn tangent_matches_finite_differences_in_every_state() {
         xi: [0.0, 0.1],
         traction: [5.0, 3.0],
     };
-    for warped in [false, true] {
+    // flat, warped, and the warped facet bent into a Nagata patch
+    for shape in ["flat", "warped", "bent"] {
+        let make = |d: f64, h: Option<History>, law: ContactLaw| match shape {
+            "bent" => bent(d, h, law),
+            _ => problem(shape == "warped", d, h, law),
+        };
         let cases = [
-            ("open", problem(warped, 0.01, Some(stick), LAW), ContactState::Open),
-            ("first touch", problem(warped, -0.01, None, LAW), ContactState::Stick),
+            ("open", make(0.01, Some(stick), LAW), ContactState::Open),
+            ("first touch", make(-0.01, None, LAW), ContactState::Stick),
             (
                 "frictionless",
-                problem(warped, -0.01, Some(stick), frictionless),
+                make(-0.01, Some(stick), frictionless),
                 ContactState::Slip,
             ),
-            ("stick", problem(warped, -0.01, Some(stick), LAW), ContactState::Stick),
-            ("slip", problem(warped, -0.01, Some(slip), LAW), ContactState::Slip),
+            ("stick", make(-0.01, Some(stick), LAW), ContactState::Stick),
+            ("slip", make(-0.01, Some(slip), LAW), ContactState::Slip),
         ];
         for (name, p, state) in cases {
             let err = fd_error(&p, state);
-            eprintln!("FD tangent, warped = {warped}, {name}: relative error {err:.2e}");
+            eprintln!("FD tangent, {shape}, {name}: relative error {err:.2e}");
             assert!(err < 1e-6, "{name}: {err:e}");
         }
     }

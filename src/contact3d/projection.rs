@@ -1,4 +1,4 @@
-//! Closest-point projection of a slave point onto a bilinear facet (Konyukhov &
+//! Closest-point projection of a slave point onto a facet (bilinear or bent) (Konyukhov &
 //! Schweizerhof, Comput Mech 35 (2005) §2; on its solvability near edges and vertices:
 //! Konyukhov & Schweizerhof, CMAME 197 (2008); notes `contact-3d.md` §"Surfaces").
 //!
@@ -85,10 +85,14 @@ pub struct Projection<S: Scalar> {
 fn newton_step<S: Scalar>(facet: &Facet<S>, rs: V3<S>, xi: [S; 2]) -> Option<[S; 2]> {
     let d = sub(rs, facet.position(xi));
     let [t1, t2] = facet.tangents(xi);
-    let d12 = dot(d, facet.twist());
+    let [[r11, r12], [_, r22]] = facet.second_derivatives(xi);
+    let d12 = dot(d, r12);
     let f = [dot(d, t1), dot(d, t2)];
-    // J = −a + d·ρ_αβ (ρ_11 = ρ_22 = 0)
-    let j = [[-dot(t1, t1), d12 - dot(t1, t2)], [d12 - dot(t1, t2), -dot(t2, t2)]];
+    // J = −a + d·ρ_αβ
+    let j = [
+        [dot(d, r11) - dot(t1, t1), d12 - dot(t1, t2)],
+        [d12 - dot(t1, t2), dot(d, r22) - dot(t2, t2)],
+    ];
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let scale = j[0][0].re().abs() * j[1][1].re().abs() + j[0][1].re().powi(2);
     // NaN fails the comparison: singular
@@ -140,9 +144,7 @@ fn real_newton<S: Scalar>(
     rs: V3<S>,
     opts: &ProjectionOptions,
 ) -> Result<([f64; 2], usize), ProjectionError> {
-    let real = Facet::<f64> {
-        x: facet.x.map(re::<S>),
-    };
+    let real = facet.real();
     let rs = re(rs);
     // the facet must be usable where Newton starts (a collapsed facet fails here, typed)
     real.point(opts.start)?;

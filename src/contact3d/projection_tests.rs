@@ -9,6 +9,7 @@ use super::vec3::{add, cross, dot, norm, scale, sub};
 pub(super) fn warped() -> Facet<f64> {
     Facet {
         x: [[0.0, 0.0, 0.02], [1.1, -0.05, 0.0], [1.0, 0.9, 0.3], [-0.1, 1.0, -0.04]],
+        bend: None,
     }
 }
 
@@ -19,6 +20,7 @@ pub(super) fn warped() -> Facet<f64> {
 fn square_facet_metric_and_outward_normal() {
     let f = Facet::<f64> {
         x: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+        bend: None,
     };
     let p = f.point([0.3, -0.2]).unwrap();
     assert_eq!(p.normal, [0.0, 0.0, 1.0]);
@@ -116,6 +118,7 @@ fn projection_failures_are_typed() {
     }
     let line = Facet::<f64> {
         x: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]],
+        bend: None,
     };
     assert!(matches!(
         project(&line, [0.5, 0.5, 0.0]),
@@ -139,6 +142,7 @@ fn projection_on_a_parallelogram_is_explicit() {
             add(add(o, e1), e2),
             add(sub(o, e1), e2),
         ],
+        bend: None,
     };
     let rs = [0.9, 0.3, -0.1];
     let p0 = f.point([0.0, 0.0]).unwrap();
@@ -162,6 +166,7 @@ fn projection_on_a_parallelogram_is_explicit() {
 fn a_long_narrow_facet_projects_at_round_off() {
     let wall = Facet::<f64> {
         x: [[6.5, 0.0, -40.0], [6.5, 0.0, 0.0], [6.5, 0.05, 0.0], [6.5, 0.05, -40.0]],
+        bend: None,
     };
     for k in 0..200 {
         let z = -0.05 - 0.0325 * k as f64;

@@ -11,9 +11,12 @@
 //! - unit normal `n = ρ_1 × ρ_2 / |ρ_1 × ρ_2|`, outward by the node order above;
 //! - curvature `h_αβ = ρ_αβ·n`: for a bilinear facet `ρ_11 = ρ_22 = 0` and
 //!   `ρ_12 = ¼ Σ ξ¹_I ξ²_I x_I` (the *twist*, zero on a parallelogram), so only `h_12 = h_21`
-//!   can be non-zero (a warped facet).
+//!   can be non-zero (a warped facet);
+//! - a **bent** facet (a Nagata patch, [`super::nagata`]) adds to the bilinear `ρ` one
+//!   quadratic bubble per edge, `ρ(ξ) = N_I x_I − Σ_e φ_e(ξ) c_e` with `c_e = Q_e (x_b − x_a)`
+//!   ([`Bend`]), so its `ρ_11`, `ρ_22` are not zero and `h_αβ` is a full curvature.
 
-use super::vec3::{add, combine, cross, dot, norm, scale, Scalar, V3};
+use super::vec3::{add, combine, cross, dot, norm, scale, sub, Scalar, V3};
 use thiserror::Error;
 
 /// Convective coordinates of the facet's nodes, in node order.
@@ -34,10 +37,81 @@ pub enum GeometryError {
     NonFinite { xi: [f64; 2] },
 }
 
-/// A bilinear facet: its four nodes' current positions.
+/// A facet: its four nodes' current positions, bilinear or bent into a Nagata patch.
 #[derive(Debug, Clone, Copy)]
 pub struct Facet<S: Scalar> {
     pub x: [V3<S>; 4],
+    /// `None`: bilinear.
+    pub bend: Option<Bend>,
+}
+
+/// The edges of a facet as `(a, b)` node pairs, in the order of [`Bend::q`]: `ξ² = −1`
+/// (1 → 2), `ξ¹ = 1` (2 → 3), `ξ² = 1` (4 → 3), `ξ¹ = −1` (1 → 4); each runs along
+/// increasing `ξ`.
+pub const EDGES: [(usize, usize); 4] = [(0, 1), (1, 2), (3, 2), (0, 3)];
+
+/// The edge curvatures of a Nagata patch (Nagata, CAGD 22 (2005) 9–21): edge `e` from node
+/// `a` to `b` is the quadratic `x(s) = x_a + s d − s(1 − s) c` (`s ∈ [0, 1]`, `d = x_b − x_a`)
+/// whose end tangents are normal to the nodal normals, `c = Q d`, `Q` a 3×3 matrix of the
+/// nodal normals alone ([`super::nagata::edge_matrix`]); row-major `q[e][i][j]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bend {
+    pub q: [[[f64; 3]; 3]; 4],
+}
+
+impl Bend {
+    /// `c_e = Q_e (x_b − x_a)` of every edge.
+    pub fn coefficients<S: Scalar>(&self, x: &[V3<S>; 4]) -> [V3<S>; 4] {
+        std::array::from_fn(|e| {
+            let (a, b) = EDGES[e];
+            let d = super::vec3::sub(x[b], x[a]);
+            self.q[e].map(|row| d[0] * row[0] + d[1] * row[1] + d[2] * row[2])
+        })
+    }
+
+    /// The edge bubbles `φ_e(ξ)` and their first and second derivatives:
+    /// `φ_e = b(ξ^α) · ½(1 ± ξ^γ)`, `α` the edge's direction, `γ` the other (`−` on the edges
+    /// at `ξ^γ = −1`), `b(u) = ¼(1 − u²)` on the facet and continued by its tangent past
+    /// `|u| = 1`, `b(u) = −½(|u| − 1)`: the patch's extension (where a point near an edge
+    /// projects) goes on along the edge's tangent plane instead of curling back as the
+    /// parabola would.
+    pub fn bubbles<S: Scalar>(xi: [S; 2]) -> [Bubble<S>; 4] {
+        // (direction α, side ±1 of the other coordinate γ)
+        const EDGE_AXES: [(usize, f64); 4] = [(0, -1.0), (1, 1.0), (0, 1.0), (1, -1.0)];
+        EDGE_AXES.map(|(al, side)| {
+            let ga = 1 - al;
+            let (u, v) = (xi[al], xi[ga]);
+            let beyond = u.re().abs() > 1.0;
+            let sign = S::from(u.re().signum());
+            let (along, d_along, dd_along) = if beyond {
+                ((S::from(1.0) - u * sign) * 0.5, sign * -0.5, S::from(0.0))
+            } else {
+                ((S::from(1.0) - u * u) * 0.25, u * -0.5, S::from(-0.5))
+            };
+            let across = (v * side + 1.0) * 0.5;
+            let d_across = S::from(0.5 * side);
+            let zero = S::from(0.0);
+            let mut b = Bubble {
+                value: along * across,
+                d: [zero; 2],
+                dd: [[zero; 2]; 2],
+            };
+            b.d[al] = d_along * across;
+            b.d[ga] = along * d_across;
+            b.dd[al][al] = across * dd_along;
+            b.dd[al][ga] = d_along * d_across;
+            b.dd[ga][al] = d_along * d_across;
+            b
+        })
+    }
+}
+
+/// An edge bubble `φ_e(ξ)`, its gradient `φ_e,α` and Hessian `φ_e,αβ`.
+#[derive(Debug, Clone, Copy)]
+pub struct Bubble<S: Scalar> {
+    pub value: S,
+    pub d: [S; 2],
+    pub dd: [[S; 2]; 2],
 }
 
 /// The local geometry of a facet at one point `ξ`.
@@ -61,8 +135,19 @@ pub struct FacetPoint<S: Scalar> {
 impl<S: Scalar> Facet<S> {
     /// Lift a plain facet into scalar type `S` (constants: no derivatives).
     pub fn lift(x: &[[f64; 3]; 4]) -> Self {
+        Facet::flat(x.map(super::vec3::lift))
+    }
+
+    /// A bilinear facet on nodes `x`.
+    pub fn flat(x: [V3<S>; 4]) -> Self {
+        Facet { x, bend: None }
+    }
+
+    /// The same facet in plain numbers (the bend is data).
+    pub fn real(&self) -> Facet<f64> {
         Facet {
-            x: x.map(super::vec3::lift),
+            x: self.x.map(super::vec3::re::<S>),
+            bend: self.bend,
         }
     }
 
@@ -71,12 +156,17 @@ impl<S: Scalar> Facet<S> {
         NODE_XI.map(|[a, b]| (xi[0] * a + 1.0) * (xi[1] * b + 1.0) * 0.25)
     }
 
-    /// `ρ(ξ) = N_I x_I`.
+    /// `ρ(ξ) = N_I x_I` (`− Σ_e φ_e c_e` when bent).
     pub fn position(&self, xi: [S; 2]) -> V3<S> {
         let n = Self::shape(xi);
         let mut p = scale(self.x[0], n[0]);
         for (x, ni) in self.x.iter().zip(n).skip(1) {
             p = add(p, scale(*x, ni));
+        }
+        if let Some(bend) = &self.bend {
+            for (c, b) in bend.coefficients(&self.x).into_iter().zip(Bend::bubbles(xi)) {
+                p = sub(p, scale(c, b.value));
+            }
         }
         p
     }
@@ -86,7 +176,7 @@ impl<S: Scalar> Facet<S> {
         NODE_XI.map(|[a, b]| [(xi[1] * b + 1.0) * (0.25 * a), (xi[0] * a + 1.0) * (0.25 * b)])
     }
 
-    /// `ρ_α(ξ) = ∂N_I/∂ξ^α x_I`.
+    /// `ρ_α(ξ) = ∂N_I/∂ξ^α x_I` (`− Σ_e φ_e,α c_e` when bent).
     pub fn tangents(&self, xi: [S; 2]) -> [V3<S>; 2] {
         let zero = S::from(0.0);
         let mut t = [[zero; 3]; 2];
@@ -94,16 +184,40 @@ impl<S: Scalar> Facet<S> {
             t[0] = add(t[0], scale(*x, d1));
             t[1] = add(t[1], scale(*x, d2));
         }
+        if let Some(bend) = &self.bend {
+            for (c, b) in bend.coefficients(&self.x).into_iter().zip(Bend::bubbles(xi)) {
+                t[0] = sub(t[0], scale(c, b.d[0]));
+                t[1] = sub(t[1], scale(c, b.d[1]));
+            }
+        }
         t
     }
 
-    /// The twist `ρ_12 = ¼ Σ ξ¹_I ξ²_I x_I` (constant over the facet; `ρ_11 = ρ_22 = 0`).
+    /// The twist `ρ_12 = ¼ Σ ξ¹_I ξ²_I x_I` of the bilinear part (constant over the facet).
     pub fn twist(&self) -> V3<S> {
         let mut t = scale(self.x[0], S::from(0.25));
         for (i, [a, b]) in NODE_XI.iter().enumerate().skip(1) {
             t = add(t, scale(self.x[i], S::from(0.25 * a * b)));
         }
         t
+    }
+
+    /// `ρ_αβ(ξ)`: the twist alone on a bilinear facet (`ρ_11 = ρ_22 = 0`), plus
+    /// `− Σ_e φ_e,αβ c_e` when bent.
+    pub fn second_derivatives(&self, xi: [S; 2]) -> [[V3<S>; 2]; 2] {
+        let zero = [S::from(0.0); 3];
+        let twist = self.twist();
+        let mut h = [[zero, twist], [twist, zero]];
+        if let Some(bend) = &self.bend {
+            for (c, b) in bend.coefficients(&self.x).into_iter().zip(Bend::bubbles(xi)) {
+                for (row, brow) in h.iter_mut().zip(b.dd) {
+                    for (v, bv) in row.iter_mut().zip(brow) {
+                        *v = sub(*v, scale(c, bv));
+                    }
+                }
+            }
+        }
+        h
     }
 
     /// Every local quantity at `ξ`, or why the facet is unusable there.
@@ -129,8 +243,7 @@ impl<S: Scalar> Facet<S> {
         // det a = a11 a22 − a12² = |ρ_1 × ρ_2|²
         let inv_det = j2.recip();
         let normal = scale(c, j2.sqrt().recip());
-        let h12 = dot(self.twist(), normal);
-        let zero = S::from(0.0);
+        let curvature = self.second_derivatives(xi).map(|row| row.map(|v| dot(v, normal)));
         Ok(FacetPoint {
             xi,
             rho,
@@ -138,7 +251,7 @@ impl<S: Scalar> Facet<S> {
             metric: [[a11, a12], [a12, a22]],
             inverse: [[a22 * inv_det, -a12 * inv_det], [-a12 * inv_det, a11 * inv_det]],
             normal,
-            curvature: [[zero, h12], [h12, zero]],
+            curvature,
         })
     }
 

@@ -13,12 +13,13 @@
 use super::decision::{SurfaceForces, SurfaceRule};
 use super::evaluate::{evaluate_point, is_closed, SearchStart};
 use super::master::PointLocal;
+use super::nagata::FacetBends;
 use super::point::{History, PointEval};
 use super::search::{bounding_box, free_borders, FacetGrid};
 use super::unknowns::PointLinearization;
 use crate::contact::law::ContactState;
 use crate::contact::system::{Decision, LocalSink};
-use crate::model::{Model, Solid, SurfaceMaster, SurfacePair};
+use crate::model::{Model, Smoothing, Solid, SurfaceMaster, SurfacePair};
 
 /// Node positions and time the 3D contact evaluation works on.
 pub struct SurfaceConfig<'a> {
@@ -124,6 +125,9 @@ pub struct SurfaceSystem {
     grids: Vec<Option<FacetGrid>>,
     /// Per pair with a facet master, its facets' free border edges ([`free_borders`]).
     borders: Vec<Vec<[bool; 4]>>,
+    /// Per pair whose master's facets are Nagata patches, their bends (at the positions an
+    /// attempt at the increment starts from, as the search grid).
+    bends: Vec<Option<FacetBends>>,
     /// Half-width of a rigid plane's fixed facet ([`super::master::plane_facet`]).
     plane_half: f64,
     /// The force unknowns of every point at the iterate, at the iterate a correction
@@ -170,6 +174,14 @@ impl SurfaceSystem {
                 .map(|p| match &p.master {
                     SurfaceMaster::Facets { facets, .. } => free_borders(facets),
                     SurfaceMaster::Rigid(_) => vec![],
+                })
+                .collect(),
+            bends: (model.surface_contacts.iter())
+                .map(|p| match &p.master {
+                    SurfaceMaster::Facets { facets, .. } if p.smoothing == Smoothing::Nagata => {
+                        Some(FacetBends::new(facets))
+                    }
+                    _ => None,
                 })
                 .collect(),
             plane_half: 4.0 * (model.size() + travel),
@@ -261,6 +273,12 @@ impl SurfaceSystem {
         for (ip, pair) in cfg.model.surface_contacts.iter().enumerate() {
             if self.grids[ip].is_none() {
                 self.grids[ip] = facet_grid(cfg, pair);
+                // the bends of an attempt: fixed while Newton iterates, so that the residual
+                // is a function of the positions alone and the tangent its derivative
+                // (see `nagata`)
+                if let (Some(bends), SurfaceMaster::Facets { facets, .. }) = (&mut self.bends[ip], &pair.master) {
+                    bends.update(facets, |n| cfg.node(n));
+                }
             }
             for is in 0..pair.slaves.len() {
                 let (rho_n, rho_t) = self.weights[ip][is];
@@ -273,6 +291,7 @@ impl SurfaceSystem {
                     facet: last.facet.or(hist.facet),
                     closed_at_last_iterate: last.facet.is_some() && is_closed(last),
                     borders: self.borders[ip].as_slice(),
+                    bends: self.bends[ip].as_ref(),
                 };
                 let point = (pair, is, &hist);
                 let decider = (rule, self.warm && hist.closed);

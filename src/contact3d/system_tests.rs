@@ -37,6 +37,7 @@ fn two_facets(folded: bool) -> Model<Solid> {
                 mu: 0.5,
             },
             transfer: Scheme::Continuous,
+            smoothing: Default::default(),
             search_radius: 0.5,
         }],
         ..Model::default()
@@ -213,13 +214,13 @@ fn a_point_a_hair_past_a_narrow_facets_border_stays_with_it_not_with_a_far_wall(
         };
         let origin = model.nodes[6];
         assert_eq!(
-            locate(&cfg, facets, &grid, (6, origin), None, 50.0),
+            locate(&cfg, (facets, None), &grid, (6, origin), None, 50.0),
             Some(1),
             "inside: {inside}"
         );
         // from the wall as the facet of the last iterate, too
         assert_eq!(
-            locate(&cfg, facets, &grid, (6, origin), Some(0), 50.0),
+            locate(&cfg, (facets, None), &grid, (6, origin), Some(0), 50.0),
             Some(1),
             "inside: {inside}"
         );
@@ -273,7 +274,7 @@ fn a_point_below_a_pressed_vertex_keeps_its_facet() {
             t: 0.0,
         };
         for start in 0..4 {
-            let got = locate(&cfg, facets, &grid, (6, origin), Some(start), 5.0);
+            let got = locate(&cfg, (facets, None), &grid, (6, origin), Some(start), 5.0);
             assert_eq!(got, Some(start), "at {x:?}");
         }
     }
@@ -284,5 +285,126 @@ fn a_point_below_a_pressed_vertex_keeps_its_facet() {
         u: &u,
         t: 0.0,
     };
-    assert_eq!(locate(&cfg, facets, &grid, (6, origin), Some(3), 5.0), Some(0));
+    assert_eq!(locate(&cfg, (facets, None), &grid, (6, origin), Some(3), 5.0), Some(0));
+}
+
+/// A curved master of 2 × 2 facets (a cap of `z = −0.3 (x² + y²)` over `[−1, 1]²`), slave
+/// node 9 pressed into it near the edge `x = 0`.
+fn cap(smoothing: crate::model::Smoothing) -> Model<Solid> {
+    let mut nodes = vec![];
+    for j in 0..3 {
+        for i in 0..3 {
+            let (x, y) = (i as f64 - 1.0, j as f64 - 1.0);
+            nodes.push([x, y, -0.3 * (x * x + y * y)]);
+        }
+    }
+    nodes.push([0.05, 0.3, -0.1]);
+    let f = |i: usize, j: usize| [3 * j + i, 3 * j + i + 1, 3 * (j + 1) + i + 1, 3 * (j + 1) + i];
+    Model {
+        nodes,
+        surface_contacts: vec![SurfacePair {
+            friction: None,
+            name: "pair".into(),
+            slaves: vec![9],
+            areas: vec![1.0],
+            measure: Default::default(),
+            master: SurfaceMaster::Facets {
+                body: 0,
+                facets: vec![f(0, 0), f(1, 0), f(0, 1), f(1, 1)],
+            },
+            law: ContactLaw {
+                eps_n: 1e3,
+                eps_t: 1e3,
+                mu: 0.0,
+            },
+            transfer: Scheme::Continuous,
+            smoothing,
+            search_radius: 0.5,
+        }],
+        ..Model::default()
+    }
+}
+
+/// The point's residual against central differences over every DOF of the model, with the
+/// pairing and the bends as the system makes them (bends of the start, held).
+#[test]
+fn a_point_on_nagata_patches_has_the_tangent_of_its_residual() {
+    use crate::contact3d::decision::SurfaceRule;
+    use crate::contact3d::evaluate::{evaluate_point, SearchStart};
+    use crate::contact3d::nagata::FacetBends;
+    let model = cap(crate::model::Smoothing::Nagata);
+    let pair = &model.surface_contacts[0];
+    let SurfaceMaster::Facets { facets, .. } = &pair.master else {
+        unreachable!()
+    };
+    let u0 = vec![0.0; 3 * model.nodes.len()];
+    let cfg = SurfaceConfig {
+        model: &model,
+        u: &u0,
+        t: 0.0,
+    };
+    let mut bends = FacetBends::new(facets);
+    bends.update(facets, |n| cfg.node(n));
+    let boxes: Vec<_> = facets.iter().map(|f| bounding_box(f.map(|n| cfg.node(n)))).collect();
+    let grid = FacetGrid::new(&boxes, pair.search_radius);
+    let borders = free_borders(facets);
+    let residual = |u: &[f64]| {
+        let cfg = SurfaceConfig {
+            model: &model,
+            u,
+            t: 0.0,
+        };
+        let search = SearchStart {
+            grid: Some(&grid),
+            facet: None,
+            closed_at_last_iterate: false,
+            borders: &borders,
+            bends: Some(&bends),
+        };
+        let mut local = PointLocal::default();
+        let hist = SurfaceHistory::default();
+        let ev = evaluate_point(
+            &cfg,
+            (pair, 0, &hist),
+            search,
+            1.0,
+            (SurfaceRule::Penalty, false),
+            &mut local,
+        );
+        let mut r = vec![0.0; u.len()];
+        let mut k = vec![vec![0.0; u.len()]; u.len()];
+        for (i, &di) in ev.dofs.iter().enumerate().take(local.len) {
+            r[di] += local.r[i];
+            for (j, &dj) in ev.dofs.iter().enumerate().take(local.len) {
+                k[di][dj] += local.k[local.len * i + j];
+            }
+        }
+        (
+            r,
+            k,
+            (
+                ev.now.facet,
+                ev.now.eval.map(|e| (e.state, e.projection.gap, e.projection.point.xi)),
+            ),
+        )
+    };
+    let (_, k, facet) = residual(&u0);
+    eprintln!("facet {facet:?}");
+    let h = 1e-6;
+    let mut worst: f64 = 0.0;
+    for j in 0..u0.len() {
+        let (mut up, mut um) = (u0.clone(), u0.clone());
+        up[j] += h;
+        um[j] -= h;
+        let (rp, _, _) = residual(&up);
+        let (rm, _, _) = residual(&um);
+        for i in 0..u0.len() {
+            worst = worst.max(((rp[i] - rm[i]) / (2.0 * h) - k[i][j]).abs());
+        }
+    }
+    let kmax = k.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(
+        worst < 1e-5 * kmax,
+        "tangent against differences: {worst:e} of {kmax:e}"
+    );
 }

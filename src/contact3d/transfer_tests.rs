@@ -11,6 +11,7 @@ use crate::model::ContactLaw;
 fn facet_a() -> Facet<f64> {
     Facet {
         x: [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+        bend: None,
     }
 }
 
@@ -20,6 +21,7 @@ fn facet_a() -> Facet<f64> {
 fn facet_b_turned() -> Facet<f64> {
     Facet {
         x: [[3.0, 0.0, 0.0], [3.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+        bend: None,
     }
 }
 
@@ -27,6 +29,7 @@ fn facet_b_turned() -> Facet<f64> {
 fn facet_b_aligned() -> Facet<f64> {
     Facet {
         x: [[1.0, 0.0, 0.0], [3.0, 0.0, 0.0], [3.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+        bend: None,
     }
 }
 
@@ -116,6 +119,7 @@ fn facet_b_folded(theta: f64) -> Facet<f64> {
     let (c, s) = (2.0 * theta.cos(), 2.0 * theta.sin());
     Facet {
         x: [[1.0, 0.0, 0.0], [1.0 + c, 0.0, -s], [1.0 + c, 1.0, -s], [1.0, 1.0, 0.0]],
+        bend: None,
     }
 }
 
@@ -171,6 +175,7 @@ fn folded_flat_is_a_typed_error() {
             [3.0, 1.0, 0.001],
             [3.0, 0.0, 0.001],
         ],
+        bend: None,
     };
     let r = transfer(Scheme::Continuous, &a, &HIST, &b);
     assert!(matches!(r, Err(super::transfer::TransferError::Folded { .. })), "{r:?}");

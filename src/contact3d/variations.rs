@@ -16,8 +16,8 @@
 
 use super::point::DOFS;
 use super::projection::Projection;
-use super::surface::Facet;
-use super::vec3::Scalar;
+use super::surface::{Bend, Facet, EDGES};
+use super::vec3::{dot, Scalar};
 
 /// `∇ζ` and `∇ξ^α` over the 15 local DOFs (see the module docs).
 #[derive(Debug, Clone, Copy)]
@@ -26,11 +26,13 @@ pub struct Variations<S: Scalar> {
     pub xi: [[S; DOFS]; 2],
 }
 
-/// The closed-form first variations at the closest point `p`.
-pub fn variations<S: Scalar>(p: &Projection<S>) -> Variations<S> {
+/// The closed-form first variations at the closest point `p` of a facet bent by `bend`
+/// (`None`: bilinear). A bent facet's `ρ` depends on node `I` through the matrix
+/// `∂ρ/∂x_I = N_I 1 − Σ_e φ_e σ_eI Q_e` (`σ_eI = +1` at the edge's end `b`, `−1` at its start
+/// `a`, [`super::surface::Bend`]) in place of `N_I 1`, and `ρ_α` through its `ξ^α`-derivative.
+pub fn variations<S: Scalar>(p: &Projection<S>, bend: Option<&Bend>) -> Variations<S> {
     let point = &p.point;
     let (zeta, n, rho) = (p.gap, point.normal, point.tangents);
-    let shape = Facet::<S>::shape(point.xi);
     let zero = S::from(0.0);
     // B = A⁻¹, A_αβ = a_αβ − ζ h_αβ
     let a = |i: usize, j: usize| point.metric[i][j] - zeta * point.curvature[i][j];
@@ -49,12 +51,18 @@ pub fn variations<S: Scalar>(p: &Projection<S>) -> Variations<S> {
         out.xi[0][c] = x[0];
         out.xi[1][c] = x[1];
     }
-    let gradients = Facet::<S>::shape_gradients(point.xi);
-    for (slot, (ni, [d1, d2])) in shape.into_iter().zip(gradients).enumerate() {
+    let weights = node_weights(point.xi, bend);
+    for (slot, w) in weights.iter().enumerate() {
         for c in 0..3 {
             let k = 3 * (slot + 1) + c;
-            out.gap[k] = -(ni * n[c]);
-            let x = solve([zeta * d1 * n[c] - ni * rho[0][c], zeta * d2 * n[c] - ni * rho[1][c]]);
+            // the columns `∂ρ/∂x_Ic`, `∂ρ_α/∂x_Ic`
+            let col = |m: &[[S; 3]; 3]| [m[0][c], m[1][c], m[2][c]];
+            let (dr, dr1, dr2) = (col(&w[0]), col(&w[1]), col(&w[2]));
+            out.gap[k] = -dot(dr, n);
+            let x = solve([
+                zeta * dot(dr1, n) - dot(dr, rho[0]),
+                zeta * dot(dr2, n) - dot(dr, rho[1]),
+            ]);
             out.xi[0][k] = x[0];
             out.xi[1][k] = x[1];
         }
@@ -62,15 +70,48 @@ pub fn variations<S: Scalar>(p: &Projection<S>) -> Variations<S> {
     out
 }
 
+/// Per facet node `I`: `[∂ρ/∂x_I, ∂ρ_1/∂x_I, ∂ρ_2/∂x_I]` at `ξ` as 3×3 matrices (row-major).
+fn node_weights<S: Scalar>(xi: [S; 2], bend: Option<&Bend>) -> [[[[S; 3]; 3]; 3]; 4] {
+    let zero = S::from(0.0);
+    let diag = |v: S| {
+        let mut m = [[zero; 3]; 3];
+        (0..3).for_each(|i| m[i][i] = v);
+        m
+    };
+    let shape = Facet::<S>::shape(xi);
+    let gradients = Facet::<S>::shape_gradients(xi);
+    let mut w: [[[[S; 3]; 3]; 3]; 4] =
+        std::array::from_fn(|i| [diag(shape[i]), diag(gradients[i][0]), diag(gradients[i][1])]);
+    if let Some(bend) = bend {
+        for (e, bubble) in Bend::bubbles(xi).into_iter().enumerate() {
+            let (a, b) = EDGES[e];
+            let factors = [bubble.value, bubble.d[0], bubble.d[1]];
+            for (which, f) in factors.into_iter().enumerate() {
+                for (i, row) in bend.q[e].iter().enumerate() {
+                    for (j, &q) in row.iter().enumerate() {
+                        let v = f * q;
+                        let (at_b, at_a) = (w[b][which][i][j], w[a][which][i][j]);
+                        w[b][which][i][j] = at_b - v;
+                        w[a][which][i][j] = at_a + v;
+                    }
+                }
+            }
+        }
+    }
+    w
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact3d::nagata::bend_of;
     use crate::contact3d::projection::project;
     use crate::contact3d::vec3::V3;
     use num_dual::Dual2SVec64;
 
-    /// A warped facet and a slave off it: the closed forms equal the gradients that
-    /// second-order duals give, and their dual parts the Hessians.
+    /// A warped facet and a slave off it, bilinear and bent into a Nagata patch (normals
+    /// tilted off the facet's): the closed forms equal the gradients that second-order duals
+    /// give, and their dual parts the Hessians.
     #[test]
     fn closed_forms_equal_the_derivatives_of_the_projection() {
         let x: [[f64; 3]; 5] = [
@@ -80,26 +121,35 @@ mod tests {
             [0.9, 1.0, 0.2],
             [-1.1, 0.8, -0.05],
         ];
+        let normals = [[-0.3, -0.3, 1.0], [0.3, -0.2, 1.0], [0.25, 0.3, 1.0], [-0.3, 0.2, 1.0]];
+        let bend = bend_of(&normals.map(|n| crate::contact3d::vec3::scale(n, 1.0 / crate::contact3d::vec3::norm(n))));
         type D = Dual2SVec64<DOFS>;
         let q: [V3<D>; 5] = std::array::from_fn(|i| std::array::from_fn(|c| D::from_re(x[i][c]).derivative(3 * i + c)));
-        let facet = Facet {
-            x: [q[1], q[2], q[3], q[4]],
-        };
-        let p = project(&facet, q[0]).unwrap();
-        let v = variations(&p);
-        let mut worst: f64 = 0.0;
-        let grad = |s: &D| s.v1.unwrap_generic(nalgebra::U1, nalgebra::Const::<DOFS>);
-        let hess = |s: &D| s.v2.unwrap_generic(nalgebra::Const::<DOFS>, nalgebra::Const::<DOFS>);
-        let pairs = [(&p.gap, &v.gap), (&p.point.xi[0], &v.xi[0]), (&p.point.xi[1], &v.xi[1])];
-        for (exact, closed) in pairs {
-            let (g, h) = (grad(exact), hess(exact));
-            for i in 0..DOFS {
-                worst = worst.max((closed[i].re - g[i]).abs());
-                for j in 0..DOFS {
-                    worst = worst.max((grad(&closed[i])[j] - h[(i, j)]).abs());
+        for bend in [None, Some(bend)] {
+            let facet = Facet {
+                x: [q[1], q[2], q[3], q[4]],
+                bend,
+            };
+            let p = project(&facet, q[0]).unwrap();
+            let v = variations(&p, bend.as_ref());
+            let mut worst: f64 = 0.0;
+            let grad = |s: &D| s.v1.unwrap_generic(nalgebra::U1, nalgebra::Const::<DOFS>);
+            let hess = |s: &D| s.v2.unwrap_generic(nalgebra::Const::<DOFS>, nalgebra::Const::<DOFS>);
+            let pairs = [(&p.gap, &v.gap), (&p.point.xi[0], &v.xi[0]), (&p.point.xi[1], &v.xi[1])];
+            for (exact, closed) in pairs {
+                let (g, h) = (grad(exact), hess(exact));
+                for i in 0..DOFS {
+                    worst = worst.max((closed[i].re - g[i]).abs());
+                    for j in 0..DOFS {
+                        worst = worst.max((grad(&closed[i])[j] - h[(i, j)]).abs());
+                    }
                 }
             }
+            assert!(
+                worst < 1e-11,
+                "closed forms against second-order duals (bent: {}): {worst:e}",
+                bend.is_some()
+            );
         }
-        assert!(worst < 1e-12, "closed forms against second-order duals: {worst:e}");
     }
 }

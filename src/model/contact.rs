@@ -157,6 +157,9 @@ pub enum Smoothing {
     /// as middle control point (`contact::surface::bezier`; the uniform quadratic B-spline of
     /// the nodes): it cuts the face's corners instead of passing through the nodes.
     Bezier,
+    /// 3D faces only: each facet bent into a quadratic (Nagata) patch through its nodes,
+    /// its edges curved by the area-weighted nodal normals (`contact3d::nagata`; Nagata 2005).
+    Nagata,
 }
 
 impl Smoothing {
@@ -165,6 +168,7 @@ impl Smoothing {
             Smoothing::None => "none",
             Smoothing::Hermite => "hermite",
             Smoothing::Bezier => "bezier",
+            Smoothing::Nagata => "nagata",
         }
     }
 }

@@ -11,7 +11,7 @@
 //! its nodes by their tributary lengths instead: `ε_N` per unit length, the force of a 2D
 //! point per unit thickness along the edge.
 
-use super::contact::ContactLaw;
+use super::contact::{ContactLaw, Smoothing};
 use super::ramp::Ramp;
 use crate::contact3d::transfer::Scheme;
 
@@ -34,6 +34,9 @@ pub struct SurfacePair {
     /// is pressed, then rough while it is twisted); `None`: `law.mu` throughout.
     pub friction: Option<Ramp>,
     pub transfer: Scheme,
+    /// A deformable master's interpolation: [`Smoothing::None`] (bilinear facets) or
+    /// [`Smoothing::Nagata`] (`contact3d::nagata`).
+    pub smoothing: Smoothing,
     /// Slaves farther than this from every facet (or the rigid surface) are not paired.
     pub search_radius: f64,
 }

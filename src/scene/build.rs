@@ -410,6 +410,16 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         return Err(bad("`mu_path` is for 3D pairs only for now: give a constant `mu`"));
     }
     let law = contact_law(cx, c)?;
+    if c.master_smoothing == Some(Smoothing::Nagata) {
+        return Err(cx.err(
+            &c.name,
+            format!(
+                "contact `{}`: `master_smoothing = \"nagata\"` smooths a 3D face",
+                c.name
+            ),
+            "a 2D master curve is smoothed by master_smoothing = \"hermite\" or \"bezier\"",
+        ));
+    }
     let smoothing = c.master_smoothing.unwrap_or(match master {
         Master::Face { .. } => Smoothing::None,
         Master::Rigid { .. } => Smoothing::Hermite,

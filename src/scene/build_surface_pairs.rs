@@ -25,8 +25,8 @@ use super::types::{ContactSpec, EnforcementKind, NodeSelection, RigidSpec, Scene
 use super::SceneError;
 use crate::contact3d::transfer::Scheme;
 use crate::model::{
-    ContactLaw, Dim, Model, Ramp, RigidSurface, RigidSurfaceShape, SlaveMeasure, Solid, SurfaceMaster, SurfacePair,
-    TransferKind, SECOND_PASS_SUFFIX,
+    ContactLaw, Dim, Model, Ramp, RigidSurface, RigidSurfaceShape, SlaveMeasure, Smoothing, Solid, SurfaceMaster,
+    SurfacePair, TransferKind, SECOND_PASS_SUFFIX,
 };
 use std::collections::BTreeMap;
 
@@ -179,6 +179,7 @@ pub(super) fn add_surface_contacts(
                 knots: k.iter().map(|p| (p[0], p[1])).collect(),
             }),
             transfer: scheme(cx, c)?,
+            smoothing: face_smoothing(cx, c)?,
             search_radius: c.search_radius.unwrap_or(2.0 * h),
         };
         if c.two_pass {
@@ -204,11 +205,6 @@ fn refuse_2d_keys(cx: &Ctx, c: &ContactSpec) -> Result<(), SceneError> {
             c.enforcement == EnforcementKind::Augmented,
             "enforcement = \"augmented\"",
             "the augmented Lagrangian's multiplier updates are 2D only; use the penalty (remove `enforcement`)",
-        ),
-        (
-            c.master_smoothing.is_some(),
-            "master_smoothing",
-            "a 3D master face is bilinear quadrilaterals, not smoothed; remove `master_smoothing`",
         ),
         (
             c.allow_initial_penetration,
@@ -238,6 +234,19 @@ fn scheme(cx: &Ctx, c: &ContactSpec) -> Result<Scheme, SceneError> {
             &c.name,
             format!("contact `{}`: `transfer = \"spatial\"` has no 3D scheme", c.name),
             "use transfer = \"continuous\" (the default), \"straightforward\" or \"path-length\"",
+        )),
+    }
+}
+
+/// A 3D master face's interpolation: `master_smoothing = "none"` (the default: bilinear
+/// facets) or `"nagata"` (smooth patches through the nodes); the 2D curves are refused.
+fn face_smoothing(cx: &Ctx, c: &ContactSpec) -> Result<Smoothing, SceneError> {
+    match c.master_smoothing.unwrap_or_default() {
+        s @ (Smoothing::None | Smoothing::Nagata) => Ok(s),
+        other => Err(cx.err(
+            &c.name,
+            format!("contact `{}`: `master_smoothing = \"{}\"` is a 2D curve's", c.name, other.name()),
+            "a 3D master face is smoothed by Nagata patches: master_smoothing = \"nagata\" (or \"none\" for bilinear facets)",
         )),
     }
 }
@@ -374,6 +383,7 @@ fn second_pass(
         law: pair.law,
         friction: pair.friction.clone(),
         transfer: pair.transfer,
+        smoothing: pair.smoothing,
         search_radius: pair.search_radius,
     })
 }

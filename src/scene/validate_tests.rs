@@ -240,3 +240,21 @@ fn a_hollow_hemisphere_a_turn_and_a_friction_history_are_checked() {
     );
     assert!(e.contains("3D pairs only") && e.contains("hint:"), "{e}");
 }
+
+#[test]
+fn nagata_patches_are_for_3d_faces_and_the_2d_curves_for_2d() {
+    let e = outcome("crossing", &["contact.point.master_smoothing=\"nagata\""]);
+    assert!(e.contains("smooths a 3D face") && e.contains("hermite"), "{e}");
+    refused(
+        "twisting-hemisphere",
+        "contact.interface.master_smoothing=\"bezier\"",
+        &["a 2D curve's", "nagata"],
+    );
+    assert_eq!(
+        outcome(
+            "twisting-hemisphere",
+            &["contact.interface.master_smoothing=\"nagata\""]
+        ),
+        "ok"
+    );
+}
