@@ -124,25 +124,24 @@ mod tests {
     use super::*;
     use crate::contact3d::surface::Facet;
 
+    /// Four nodes on the unit sphere's lower half, at the directions `(tan a, tan b, −1)` of
+    /// the angle pairs `(a, b)` given in units of 10°: an irregular quadrilateral (no symmetry
+    /// hides an edge's formula), its radial normals its nodal normals.
+    fn sphere_quad(angles: [[f64; 2]; 4]) -> [[f64; 3]; 4] {
+        let d = 10f64.to_radians();
+        angles.map(|[a, b]| {
+            let v = [(a * d).tan(), (b * d).tan(), -1.0];
+            scale(v, 1.0 / norm(v))
+        })
+    }
+
     /// Four nodes on the unit sphere, normals radial: the patch's edges are tangent to the
     /// nodal planes at the nodes (`ρ_α·n_I = 0` along the edge at each end, 1e-14), and its
     /// midpoint lies nearer to the sphere than the bilinear facet's (a 20° facet: the flat
     /// one sags by 1.5 %, the patch by < 0.1 %).
     #[test]
     fn a_patch_of_a_sphere_is_tangent_to_the_nodal_normals_and_close_to_the_sphere() {
-        let d = 10f64.to_radians();
-        let on_sphere = |a: f64, b: f64| {
-            let v = [a.tan(), b.tan(), -1.0];
-            scale(v, 1.0 / norm(v))
-        };
-        // counter-clockwise seen from outside (below the sphere's centre, outward −z)
-        // an irregular quadrilateral: no symmetry hides an edge's formula
-        let x = [
-            on_sphere(-d, -0.7 * d),
-            on_sphere(-1.2 * d, d),
-            on_sphere(0.8 * d, 1.1 * d),
-            on_sphere(d, -d),
-        ];
+        let x = sphere_quad([[-1.0, -0.7], [-1.2, 1.0], [0.8, 1.1], [1.0, -1.0]]);
         let bend = bend_of(&x);
         let facet = Facet { x, bend: Some(bend) };
         for (i, xi) in crate::contact3d::surface::NODE_XI.iter().enumerate() {
@@ -162,12 +161,7 @@ mod tests {
     /// the extension lies on the straight continuation (no curl back).
     #[test]
     fn a_patch_is_continued_by_its_tangent_past_its_edges() {
-        let d = 10f64.to_radians();
-        let on_sphere = |a: f64, b: f64| {
-            let v = [a.tan(), b.tan(), -1.0];
-            scale(v, 1.0 / norm(v))
-        };
-        let x = [on_sphere(-d, -d), on_sphere(-d, d), on_sphere(d, d), on_sphere(d, -d)];
+        let x = sphere_quad([[-1.0, -1.0], [-1.0, 1.0], [1.0, 1.0], [1.0, -1.0]]);
         let facet = Facet {
             x,
             bend: Some(bend_of(&x)),
