@@ -33,7 +33,7 @@ pub const COLUMN_TOLERANCE: f64 = 1e-4;
 /// The check of one column of the tangent.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ColumnCheck {
-    /// Node and component (0: x, 1: y) of the column's degree of freedom.
+    /// Node and component (0: x, 1: y, 2: z) of the column's degree of freedom.
     pub node: usize,
     pub component: usize,
     /// `‖K e_j − d_c‖∞ / max(‖K e_j‖∞, ‖d_c‖∞)`.
@@ -67,7 +67,12 @@ impl TangentCheck {
                 .take(6)
                 .map(|c| {
                     let what = if c.jump { " jump" } else { "" };
-                    format!("node {} {} ({:.1e}{what})", c.node, ["x", "y"][c.component], c.error)
+                    format!(
+                        "node {} {} ({:.1e}{what})",
+                        c.node,
+                        ["x", "y", "z"][c.component],
+                        c.error
+                    )
                 })
                 .collect::<Vec<_>>()
                 .join(", ")
@@ -146,7 +151,7 @@ pub fn check_tangent<S: Dim>(
         let k: Vec<f64> = (0..n)
             .map(|i| asm.matrix.index(i, j).map_or(0.0, |s| asm.matrix.values[s]))
             .collect();
-        out.record(compare(d, &k, &r0, &rp, &rm, h));
+        out.record(compare((d, S::D), &k, &r0, &rp, &rm, h));
     }
     let worst_first = |v: &mut Vec<ColumnCheck>| v.sort_by(|a, b| b.error.total_cmp(&a.error));
     worst_first(&mut out.wrong);
@@ -169,7 +174,9 @@ impl TangentCheck {
 
 /// Compare column `k` of the tangent with the differences of the residuals `r0` (at `u`),
 /// `rp`, `rm` (at `u ± h e_d`).
-fn compare(d: usize, k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> ColumnCheck {
+/// Column `d` (a DOF of a model with `dim` components per node) of the tangent `k` against
+/// the residuals at `u` (`r0`) and `u ± h e_d` (`rp`, `rm`).
+fn compare((d, dim): (usize, usize), k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> ColumnCheck {
     let inf = |f: &dyn Fn(usize) -> f64| (0..k.len()).map(f).fold(0.0f64, |m, v| m.max(v.abs()));
     let central = |i: usize| (rp[i] - rm[i]) / (2.0 * h);
     let scale = inf(&|i| k[i]).max(inf(&central)).max(f64::MIN_POSITIVE);
@@ -180,8 +187,8 @@ fn compare(d: usize, k: &[f64], r0: &[f64], rp: &[f64], rm: &[f64], h: f64) -> C
     let from_one_side =
         error > COLUMN_TOLERANCE && (one_side(&|i| (rp[i] - r0[i]) / h) || one_side(&|i| (r0[i] - rm[i]) / h));
     ColumnCheck {
-        node: d / 2,
-        component: d % 2,
+        node: d / dim,
+        component: d % dim,
         error,
         kink: sided > 1e2 * COLUMN_TOLERANCE || from_one_side,
         jump,
@@ -230,7 +237,24 @@ mod tests {
     /// Residual `r(x) = a x` for `x < 0`, `b x` for `x ≥ 0`, checked at `x = 0` with `h = 1e-3`.
     fn kinked(a: f64, b: f64, k: f64) -> ColumnCheck {
         let h = 1e-3;
-        compare(0, &[k], &[0.0], &[b * h], &[-a * h], h)
+        compare((0, 2), &[k], &[0.0], &[b * h], &[-a * h], h)
+    }
+
+    /// A column is named by its node and component in the model's dimension: DOF 6123 is
+    /// node 2041's `x` in 3D (not node 3061's `y`, as a 2D count would say).
+    #[test]
+    fn a_column_is_named_by_the_models_dimension() {
+        let c = compare((6123, 3), &[1.0], &[0.0], &[1e-3], &[-1e-3], 1e-3);
+        assert_eq!((c.node, c.component), (2041, 0));
+        let check = TangentCheck {
+            columns: 1,
+            wrong: vec![ColumnCheck { error: 0.5, ..c }],
+            ..TangentCheck::default()
+        };
+        assert!(check.summary().contains("node 2041 x"), "{}", check.summary());
+        let c = compare((6125, 3), &[1.0], &[0.0], &[1e-3], &[-1e-3], 1e-3);
+        assert_eq!((c.node, c.component), (2041, 2));
+        assert_eq!(compare((7, 2), &[1.0], &[0.0], &[1e-3], &[-1e-3], 1e-3).node, 3);
     }
 
     #[test]
