@@ -42,7 +42,10 @@ use super::surface::{Bend, EDGES};
 use super::vec3::{add, cross, dot, norm, scale, sub};
 use std::collections::HashMap;
 
-/// Normals more than this cosine apart are a crease: the edge stays straight.
+/// Normals more than this cosine apart (60°) are a crease: the edge stays straight. A feature
+/// angle of this project's choosing, not Nagata's: without one, a face joined round a box's
+/// corner (`face = "zmax+xmin"`) would be rounded off by a quarter of the edge. No scene here
+/// comes near it (the hemisphere's neighbouring normals differ by ≤ 12°).
 pub const CREASE_COS: f64 = 0.5;
 
 /// `Q = v wᵀ / |v|²` of an edge with unit nodal normals `na` at its start and `nb` at its end

@@ -410,20 +410,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         return Err(bad("`mu_path` is for 3D pairs only for now: give a constant `mu`"));
     }
     let law = contact_law(cx, c)?;
-    if c.master_smoothing == Some(Smoothing::Nagata) {
-        return Err(cx.err(
-            &c.name,
-            format!(
-                "contact `{}`: `master_smoothing = \"nagata\"` smooths a 3D face",
-                c.name
-            ),
-            "a 2D master curve is smoothed by master_smoothing = \"hermite\" or \"bezier\"",
-        ));
-    }
-    let smoothing = c.master_smoothing.unwrap_or(match master {
-        Master::Face { .. } => Smoothing::None,
-        Master::Rigid { .. } => Smoothing::Hermite,
-    });
+    let smoothing = curve_smoothing(cx, c, &master)?;
     Ok(ContactPair {
         name: c.name.clone(),
         slaves,
@@ -436,6 +423,26 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         smoothing,
         enforcement: enforcement(cx, c)?,
     })
+}
+
+/// A 2D master's interpolation: the scene's `master_smoothing`, else straight segments for
+/// a deformable face and Hermite for a rigid outline's vertex pair; `"nagata"` (a 3D face's
+/// patches) refused.
+fn curve_smoothing(cx: &Ctx, c: &ContactSpec, master: &Master) -> Result<Smoothing, SceneError> {
+    if c.master_smoothing == Some(Smoothing::Nagata) {
+        return Err(cx.err(
+            &c.name,
+            format!(
+                "contact `{}`: `master_smoothing = \"nagata\"` smooths a 3D face",
+                c.name
+            ),
+            "a 2D master curve is smoothed by master_smoothing = \"hermite\" or \"bezier\"",
+        ));
+    }
+    Ok(c.master_smoothing.unwrap_or(match master {
+        Master::Face { .. } => Smoothing::None,
+        Master::Rigid { .. } => Smoothing::Hermite,
+    }))
 }
 
 /// The law of a pair (2D or 3D): `eps_n > 0`, `mu ≥ 0` (every value of a `mu_path`), and
