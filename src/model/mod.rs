@@ -137,6 +137,8 @@ pub struct Monitor {
     pub component: usize,
     /// `-1` to report displacement and force with flipped sign (e.g. a downward push).
     pub sign: f64,
+    /// Multiplies the force only: from the modelled part to what is reported.
+    pub force_scale: f64,
 }
 
 /// The resolved model, in 2D ([`Plane`], the default) or 3D ([`Solid`]). Rigid bodies,

@@ -368,6 +368,7 @@ pub(in crate::scene) fn add_monitors<S: Dim>(cx: &Ctx, s: &SceneFile, m: &mut Mo
             target,
             component: comp_of::<S>(cx, mon.component, &mon.label)?,
             sign: mon.sign,
+            force_scale: mon.force_scale,
         });
     }
     Ok(())

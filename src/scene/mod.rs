@@ -11,6 +11,7 @@ pub mod build_solid;
 pub mod build_surface_pairs;
 pub mod builtin;
 mod edge_slave;
+pub mod extrude;
 pub mod fillet;
 pub mod initial_contact;
 mod mesh;
@@ -148,7 +149,7 @@ pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneEr
         }
     })?;
     if sets.is_empty() {
-        return Ok(first);
+        return extrude::apply(source, first);
     }
     let mut table: toml::Table = toml::from_str(&source.text).expect("parsed above");
     for set in sets {
@@ -159,13 +160,14 @@ pub fn parse(source: &SceneSource, sets: &[String]) -> Result<SceneFile, SceneEr
         })?;
     }
     let names = table.clone();
-    toml::Value::Table(table)
+    let file = toml::Value::Table(table)
         .try_into()
         .map_err(|e: toml::de::Error| SceneError::Override {
             origin: source.origin.clone(),
             set: sets.join(" --set "),
             message: overrides::unknown_name(&names, sets, e.message()).unwrap_or_else(|| e.message().to_string()),
-        })
+        })?;
+    extrude::apply(source, file)
 }
 
 /// A `--set` argument for an error message: at most 120 characters.

@@ -46,6 +46,9 @@ pub struct SceneFile {
     /// Model-size limits checked before anything is allocated.
     #[serde(default)]
     pub limits: Limits,
+    /// How this plane scene is built in 3D (`build = true`: as its extrusion), so that a
+    /// sweep can vary the model as one key.
+    pub extrusion: Option<super::extrude::ExtrusionSpec>,
 }
 
 /// Limits on the size of a model and of a run, checked before the model is built. Raise them
@@ -435,6 +438,10 @@ pub struct MonitorSpec {
     /// Multiplies displacement and force (e.g. −1 to report a downward push as positive).
     #[serde(default = "unit")]
     pub sign: f64,
+    /// Multiplies the force only (default 1): from the modelled part to what is reported,
+    /// e.g. `1 / L` for the force per unit length of a slice `L` long.
+    #[serde(default = "unit")]
+    pub force_scale: f64,
 }
 
 fn unit() -> f64 {

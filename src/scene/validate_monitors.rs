@@ -63,6 +63,7 @@ pub(super) fn check(c: &Check, s: &SceneFile) -> R {
             }
         }
         c.finite(&sub(&path, "sign"), &key("sign"), m.sign)?;
+        c.finite(&sub(&path, "force_scale"), &key("force_scale"), m.force_scale)?;
     }
     Ok(())
 }

@@ -72,7 +72,7 @@ fn record<S: Dim>(
     MonitorRecord {
         label: m.label.clone(),
         displacement: m.sign * displacement,
-        force: m.sign * force,
+        force: m.sign * m.force_scale * force,
     }
 }
 
