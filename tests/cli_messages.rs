@@ -104,7 +104,7 @@ fn check_advises_the_plane_or_axisymmetric_model_of_a_3d_scene() {
     let out = text(&contrail(&["check", s(&disc)])).0;
     assert!(
         out.contains(
-            "an axisymmetric model of its section (the plane y = 0) would do, with about 306 DOFs instead of 5859"
+            "an axisymmetric model of its section (the half-plane y = 0, x ≥ 0) would do, with about 306 DOFs instead of 5859"
         ),
         "{out}"
     );

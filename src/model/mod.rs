@@ -8,6 +8,7 @@ pub mod gmsh;
 pub mod hex_boundary;
 pub mod mesh;
 pub mod ramp;
+pub mod revolved_mesh;
 pub mod rigid;
 pub mod shell_mesh;
 pub mod surface_contact;

@@ -134,6 +134,29 @@ fn solid_mesh(src: &SceneSource, b: &super::types::BodySpec) -> Result<Option<Bo
             elements,
             grading,
         } => Some(BoxMesh::new(*origin, *size, *elements, *grading)),
+        MeshSpec::Revolved {
+            origin,
+            size,
+            elements,
+            grading,
+            around,
+            core,
+            turn_deg,
+        } => {
+            let at = |k: usize| {
+                crate::model::mesh::graded_coords(size[k], elements[k], grading[k])
+                    .iter()
+                    .map(|v| origin[k] + v)
+                    .collect::<Vec<f64>>()
+            };
+            let quarters = (*turn_deg / 90.0).round() as usize;
+            Some(crate::model::revolved_mesh::revolution(
+                &at(0),
+                &at(1),
+                (*around, quarters),
+                *core,
+            ))
+        }
         MeshSpec::HemisphereShell {
             centre,
             radius,

@@ -78,26 +78,41 @@ struct Part {
     held_everywhere: bool,
 }
 
-/// The scene as it is to be built: itself, or its 3D extrusion when `[extrusion]` says so.
+/// The scene as it is to be built: itself, or its 3D extrusion or revolution when
+/// `[extrusion]` or `[revolution]` says so.
 pub fn apply(src: &SceneSource, s: SceneFile) -> Result<SceneFile, SceneError> {
-    match &s.extrusion {
-        Some(e) if e.build => {
+    match (&s.extrusion, &s.revolution) {
+        (Some(e), Some(r)) if e.build && r.build => Err(err(
+            src,
+            "and [revolution] build = true".into(),
+            "build the scene one way",
+        )),
+        (Some(e), _) if e.build => {
             super::validate::validate(src, &s)?;
             extrude(src, &s, e)
+        }
+        (_, Some(r)) if r.build => {
+            super::validate::validate(src, &s)?;
+            super::revolve::revolve(src, &s, r)
         }
         _ => Ok(s),
     }
 }
 
 fn err(src: &SceneSource, message: String, hint: &str) -> SceneError {
-    let location = src.text.find("[extrusion]").map_or(String::new(), |off| {
+    table_err(src, "extrusion", message, hint)
+}
+
+/// A refusal of `[table] build = true`, located at the table.
+pub(super) fn table_err(src: &SceneSource, table: &str, message: String, hint: &str) -> SceneError {
+    let location = src.text.find(&format!("[{table}]")).map_or(String::new(), |off| {
         let (l, c) = super::line_col(&src.text, off);
         format!(":{l}:{c}")
     });
     SceneError::Invalid {
         origin: src.origin.clone(),
         location,
-        message: format!("[extrusion] build = true: {message}"),
+        message: format!("[{table}] build = true: {message}"),
         hint: hint.into(),
     }
 }
@@ -113,6 +128,7 @@ fn extrude(src: &SceneSource, s: &SceneFile, e: &ExtrusionSpec) -> Result<SceneF
     }
     let mut out = s.clone();
     out.extrusion = None;
+    out.revolution = None;
     out.description = format!(
         "{} — built in 3D as its extrusion ({} of length {} along y)",
         s.description,
@@ -334,7 +350,7 @@ fn selection(src: &SceneSource, s: &SceneFile, body: &str, n: &NodeSelection) ->
 }
 
 /// A history multiplied by `k`.
-fn scaled(r: &RampSpec, k: f64) -> RampSpec {
+pub(super) fn scaled(r: &RampSpec, k: f64) -> RampSpec {
     match r {
         RampSpec::Final(v) => RampSpec::Final(v * k),
         RampSpec::Path(p) => RampSpec::Path(p.iter().map(|[t, v]| [*t, v * k]).collect()),
@@ -390,7 +406,7 @@ fn rigid(src: &SceneSource, r: &mut RigidSpec) -> Result<(), SceneError> {
 
 /// The smallest element edge along a contact's slave side (1 for a single node: a 3D edge
 /// slave's penalty is per unit length, as a 2D node's is per unit thickness).
-fn slave_spacing(s: &SceneFile, c: &super::types::ContactSpec) -> f64 {
+pub(super) fn slave_spacing(s: &SceneFile, c: &super::types::ContactSpec) -> f64 {
     let (Some(body), Some(nodes)) = (&c.slave.body, &c.slave.nodes) else {
         return 1.0;
     };

@@ -195,10 +195,13 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             }
         }
         MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
-        MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. } => {
+        MeshSpec::Box { .. }
+        | MeshSpec::Gmsh3d { .. }
+        | MeshSpec::HemisphereShell { .. }
+        | MeshSpec::Revolved { .. } => {
             return Err(invalid(
                 format!(
-                    "body `{}`: a `box`, `hemisphere-shell` or `gmsh-3d` mesh makes a 3D body",
+                    "body `{}`: a `box`, `revolved`, `hemisphere-shell` or `gmsh-3d` mesh makes a 3D body",
                     b.name
                 ),
                 "a scene is 2D or 3D in all its bodies",

@@ -66,6 +66,31 @@ pub enum MeshSpec {
         #[serde(default = "unit_grading3")]
         grading: [f64; 3],
     },
+    /// A body of revolution about the `z` axis (by default its quarter): the section rectangle
+    /// `origin .. origin + size` in the `(r, z)` plane (`origin[0] = r₀ ≥ 0`), graded as a
+    /// rectangle is (the last element over the first), turned from the plane `y = 0` to the
+    /// plane `x = 0` (`model::revolved_mesh`): the body is 3D. A full section (`r₀ = 0`) is
+    /// meshed as a butterfly (a core square and a ring around it), a hollow one as arcs.
+    /// Node sets and faces `ymin`, `xmin` (the symmetry planes), `zmin`, `zmax`, `outer`,
+    /// `inner` (hollow), the node set `axis` (full) and `all`.
+    Revolved {
+        origin: [f64; 2],
+        size: [f64; 2],
+        /// Elements along r and z.
+        elements: [usize; 2],
+        #[serde(default = "unit_grading")]
+        grading: [f64; 2],
+        /// Cells around the quarter of a hollow section (default 8).
+        #[serde(default = "eight")]
+        around: usize,
+        /// The share of the radius a full section's core square takes (default 0.5).
+        #[serde(default = "half")]
+        core: f64,
+        /// How far the section turns, degrees: 90 (default: the quarter, from the plane
+        /// `y = 0` to `x = 0`), or for a hollow section 180 (half, `y ≥ 0`) or 360 (whole).
+        #[serde(default = "quarter_turn")]
+        turn_deg: f64,
+    },
     /// Structured hexahedral mesh of a hollow hemisphere, `radius[0] ≤ |x − centre| ≤
     /// radius[1]`, its dome below the centre (`z ≤ centre_z`): the body is 3D. The dome is
     /// the lower half of an equiangular cubed sphere, `3 n²` cells per layer for
@@ -100,6 +125,18 @@ pub(super) fn unit_grading() -> [f64; 2] {
     [1.0, 1.0]
 }
 
+fn eight() -> usize {
+    8
+}
+
+fn half() -> f64 {
+    0.5
+}
+
+fn quarter_turn() -> f64 {
+    90.0
+}
+
 pub(super) fn unit_grading3() -> [f64; 3] {
     [1.0, 1.0, 1.0]
 }
@@ -109,7 +146,10 @@ impl MeshSpec {
     pub fn is_3d(&self) -> bool {
         matches!(
             self,
-            MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. }
+            MeshSpec::Box { .. }
+                | MeshSpec::Gmsh3d { .. }
+                | MeshSpec::HemisphereShell { .. }
+                | MeshSpec::Revolved { .. }
         )
     }
 }

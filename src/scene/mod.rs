@@ -22,6 +22,7 @@ pub mod monitors;
 mod overclosure;
 mod overrides;
 pub mod pressure;
+pub mod revolve;
 pub mod rigid_spec;
 pub mod types;
 pub mod validate;

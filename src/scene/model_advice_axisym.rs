@@ -1,28 +1,32 @@
-//! Which smaller model a 3D scene would do with, continued: a quarter model of a body of
-//! revolution about `z`, loaded and held alike about that axis, is an axisymmetric model of
-//! its section (`contrail check`; the plane models: [`super::model_advice`]).
+//! Which smaller model a 3D scene would do with, continued: a body of revolution about `z` —
+//! whole, half or a quarter — loaded and held alike about that axis, is an axisymmetric model
+//! of its section (`contrail check`; the plane models: [`super::model_advice`]).
 //!
 //! The rules read the built model:
-//! - **a quarter model**: nodes in `x ≥ 0, y ≥ 0`, with nodes on both planes `x = 0` and
-//!   `y = 0`, held there at zero normal to the plane (the symmetry conditions), nothing else
-//!   held along `x` or `y`;
-//! - **a body of revolution**: the section on `y = 0` (the points `(x, z)`) and the section on
-//!   `x = 0` (the points `(y, z)`) are the same, and at every level `z` no node lies farther
-//!   from the axis than the section's outermost node there (a box's corners do);
+//! - **the part modelled**: a quarter (nodes in `x ≥ 0, y ≥ 0`), a half (`y ≥ 0` or `x ≥ 0`)
+//!   or the whole; each symmetry plane that bounds it held whole at zero normal to itself,
+//!   and nothing else held along `x` or `y` but nodes on the axis (at zero: `u_r = 0`);
+//! - **a body of revolution**: its sections on the meridian half-planes it spans (`y = 0,
+//!   x ≥ 0`; `x = 0, y ≥ 0`; `y = 0, x ≤ 0`; `x = 0, y ≤ 0`) are the same, as points
+//!   (distance from the axis, level), and at every level `z` no node lies farther from the
+//!   axis than the section's outermost node there (a box's corners do);
 //! - **nothing about the axis**: no load across it (only along `z`), rigid planes normal to
 //!   `z` and spheres centred on it, moving along `z` only (contact between deformable bodies
 //!   is not judged: such a scene gets no advice);
 //! - **held alike about the axis**: a node held along `z` has every node of its ring (same
 //!   radius and level) held alike.
 //!
-//! The advice gives the axisymmetric model's DOFs as two per node of the section `y = 0`.
+//! The advice gives the axisymmetric model's DOFs as two per node of the section `y = 0`,
+//! `x ≥ 0`. A mesh with no nodes on those half-planes (a cubed sphere's) gets no advice.
 
 use crate::model::{Model, Ramp, RigidSurfaceShape, Solid, SurfaceMaster};
 use std::collections::{BTreeMap, BTreeSet};
 
-/// What an axisymmetric model of a 3D quarter model would be.
+/// What an axisymmetric model of a 3D model would be.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AxisymmetricAdvice {
+    /// `"the quarter of a"`, `"half a"` or `"a"` (body of revolution).
+    pub part: &'static str,
     pub dofs_3d: usize,
     pub dofs_axisymmetric: usize,
 }
@@ -31,7 +35,8 @@ impl AxisymmetricAdvice {
     /// One line for `contrail check`.
     pub fn line(&self) -> String {
         format!(
-            "advice: this scene is the quarter of a body of revolution about z, loaded and held alike about that axis: an axisymmetric model of its section (the plane y = 0) would do, with about {} DOFs instead of {} ({:.0}× fewer)",
+            "advice: this scene is {} body of revolution about z, loaded and held alike about that axis: an axisymmetric model of its section (the half-plane y = 0, x ≥ 0) would do, with about {} DOFs instead of {} ({:.0}× fewer)",
+            self.part,
             self.dofs_axisymmetric,
             self.dofs_3d,
             self.dofs_3d as f64 / self.dofs_axisymmetric.max(1) as f64
@@ -39,7 +44,14 @@ impl AxisymmetricAdvice {
     }
 }
 
-/// The axisymmetric model a 3D quarter model would do with, if any (see the module).
+/// The meridian half-planes at 0°, 90°, 180° and 270°: a node on one, as (its distance from
+/// the axis, its level), or `None`.
+fn on_meridian(p: &[f64; 3], k: usize, tol: f64) -> Option<(f64, f64)> {
+    let (along, across) = [(p[0], p[1]), (p[1], p[0]), (-p[0], p[1]), (-p[1], p[0])][k];
+    (across.abs() <= tol && along >= -tol).then_some((along.max(0.0), p[2]))
+}
+
+/// The axisymmetric model a 3D model would do with, if any (see the module).
 pub fn axisymmetric_advice(m: &Model<Solid>) -> Option<AxisymmetricAdvice> {
     let size = m.nodes.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
     if m.nodes.is_empty() || size == 0.0 {
@@ -47,22 +59,27 @@ pub fn axisymmetric_advice(m: &Model<Solid>) -> Option<AxisymmetricAdvice> {
     }
     let tol = 1e-9 * size;
     let q = |v: f64| (v / tol).round() as i64;
-    if m.nodes.iter().any(|p| p[0] < -tol || p[1] < -tol) {
-        return None;
-    }
-    let on = |a: usize| (0..m.nodes.len()).filter(move |&i| m.nodes[i][a].abs() <= tol);
-    // the two symmetry sections, as (distance from the axis, level)
-    let section = |a: usize| {
-        on(a)
-            .map(|i| (q(m.nodes[i][1 - a]), q(m.nodes[i][2])))
+    // which part of the turn the body covers: x ≥ 0 and/or y ≥ 0 where no node lies below
+    let below = |c: usize| m.nodes.iter().any(|p| p[c] < -tol);
+    let planes: Vec<usize> = (0..2).filter(|&c| !below(c)).collect();
+    let (part, meridians): (&'static str, &[usize]) = match (below(0), below(1)) {
+        (false, false) => ("the quarter of a", &[0, 1]),
+        (true, false) => ("half a", &[0, 1, 2]),
+        (false, true) => ("half a", &[3, 0, 1]),
+        (true, true) => ("a", &[0, 1, 2, 3]),
+    };
+    // the sections on the meridians the body spans, as (distance from the axis, level)
+    let section = |k: usize| {
+        (m.nodes.iter())
+            .filter_map(|p| on_meridian(p, k, tol).map(|(r, z)| (q(r), q(z))))
             .collect::<BTreeSet<_>>()
     };
-    let (on_y0, on_x0) = (section(1), section(0));
-    if on_y0.is_empty() || on_y0 != on_x0 {
+    let first = section(meridians[0]);
+    if first.is_empty() || meridians[1..].iter().any(|&k| section(k) != first) {
         return None;
     }
     let mut outer: BTreeMap<i64, i64> = BTreeMap::new();
-    for (r, z) in &on_y0 {
+    for (r, z) in &first {
         let o = outer.entry(*z).or_insert(*r);
         *o = (*o).max(*r);
     }
@@ -71,30 +88,37 @@ pub fn axisymmetric_advice(m: &Model<Solid>) -> Option<AxisymmetricAdvice> {
         .nodes
         .iter()
         .all(|p| outer.get(&q(p[2])).is_some_and(|o| radius(p) <= *o + 1));
-    if !inside || !symmetry_holds_only(m, tol) || !axisymmetric_actions(m) || !rings_held_alike(m, q) {
+    if !inside || !symmetry_holds_only(m, &planes, tol) || !axisymmetric_actions(m) || !rings_held_alike(m, q) {
         return None;
     }
+    let on_section = m.nodes.iter().filter(|p| on_meridian(p, 0, tol).is_some()).count();
     Some(AxisymmetricAdvice {
+        part,
         dofs_3d: m.dof_count(),
-        dofs_axisymmetric: 2 * on(1).count(),
+        dofs_axisymmetric: 2 * on_section,
     })
 }
 
-/// `x` held (at zero) exactly on the plane `x = 0` and `y` on `y = 0`, both planes held.
-fn symmetry_holds_only(m: &Model<Solid>, tol: f64) -> bool {
+/// `x` and `y` held only at zero, and only on the axis or on the symmetry plane across them
+/// (`planes`: `0` for `x = 0`, `1` for `y = 0`), each such plane held whole.
+fn symmetry_holds_only(m: &Model<Solid>, planes: &[usize], tol: f64) -> bool {
     let mut held = [BTreeSet::new(), BTreeSet::new()];
     for p in &m.prescribed {
         let (node, c) = (p.dof / 3, p.dof % 3);
         if c < 2 {
-            if !p.is_zero() || m.nodes[node][c].abs() > tol {
+            let x = m.nodes[node];
+            let on_axis = x[0].hypot(x[1]) <= tol;
+            let on_plane = planes.contains(&c) && x[c].abs() <= tol;
+            if !p.is_zero() || !(on_axis || on_plane) {
                 return false;
             }
             held[c].insert(node);
         }
     }
-    (0..2).all(|c| {
-        let plane: BTreeSet<usize> = (0..m.nodes.len()).filter(|&i| m.nodes[i][c].abs() <= tol).collect();
-        held[c] == plane
+    planes.iter().all(|&c| {
+        (0..m.nodes.len())
+            .filter(|&i| m.nodes[i][c].abs() <= tol)
+            .all(|i| held[c].contains(&i))
     })
 }
 
@@ -167,5 +191,55 @@ mod tests {
         let scene = parse(&hertz, &[]).unwrap();
         let boxed = axisymmetric_advice(&build_solid(&hertz, &scene).unwrap().model);
         assert_eq!(boxed, None, "a box's corners lie outside its section");
+    }
+
+    /// A tube (r 0.5 … 1, height 1) turned through `turn` degrees, its base held along z and
+    /// its top pushed down, with `extra` TOML appended.
+    fn tube(turn: f64, extra: &str) -> String {
+        format!(
+            r#"name = "tube"
+[[body]]
+name = "tube"
+material = {{ model = "neo-hookean", young = 1000.0, poisson = 0.3 }}
+mesh = {{ kind = "revolved", origin = [0.5, 0.0], size = [0.5, 1.0], elements = [2, 2], around = 3, turn_deg = {turn} }}
+[[fix]]
+body = "tube"
+nodes = "zmin"
+components = ["z"]
+[[fix]]
+body = "tube"
+nodes = "zmax"
+components = ["z"]
+value = -0.01
+{extra}"#
+        )
+    }
+
+    #[test]
+    fn a_whole_or_half_tube_held_alike_is_axisymmetric_and_a_sideways_hold_is_not() {
+        let whole = advice("tube.toml", &tube(360.0, "")).expect("a whole body of revolution");
+        assert_eq!(
+            (whole.part, whole.dofs_axisymmetric, whole.dofs_3d),
+            ("a", 2 * 3 * 3, 3 * 3 * 3 * 12)
+        );
+        assert!(
+            whole.line().contains("this scene is a body of revolution"),
+            "{}",
+            whole.line()
+        );
+        let symmetry = "[[fix]]\nbody = \"tube\"\nnodes = \"ymin\"\ncomponents = [\"y\"]\n";
+        let half = advice("tube.toml", &tube(180.0, symmetry)).expect("half a body of revolution");
+        assert_eq!(half.part, "half a");
+        assert_eq!(
+            advice("tube.toml", &tube(180.0, "")),
+            None,
+            "its symmetry plane is not held"
+        );
+        let sideways = "[[fix]]\nbody = \"tube\"\nnodes = \"outer\"\ncomponents = [\"x\"]\n";
+        assert_eq!(
+            advice("tube.toml", &tube(360.0, sideways)),
+            None,
+            "held across the axis off it"
+        );
     }
 }

@@ -49,6 +49,9 @@ pub struct SceneFile {
     /// How this plane scene is built in 3D (`build = true`: as its extrusion), so that a
     /// sweep can vary the model as one key.
     pub extrusion: Option<super::extrude::ExtrusionSpec>,
+    /// How this axisymmetric scene is built in 3D (`build = true`: the quarter of its
+    /// revolution about the axis).
+    pub revolution: Option<super::revolve::RevolutionSpec>,
 }
 
 /// Limits on the size of a model and of a run, checked before the model is built. Raise them

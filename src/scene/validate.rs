@@ -352,6 +352,14 @@ fn limits(c: &Check, s: &SceneFile) -> R {
                 let n = *n as f64;
                 3.0 * (3.0 * n * n + 2.0 * n + 1.0) * (*l as f64 + 1.0)
             }
+            MeshSpec::Revolved {
+                elements: [nr, nz],
+                around,
+                ..
+            } => {
+                let nr = *nr as f64 + 1.0;
+                3.0 * nr * nr.max(*around as f64 + 1.0) * (*nz as f64 + 1.0)
+            }
             MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         })
         .sum();
@@ -362,6 +370,11 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             }
             MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
             MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
+            MeshSpec::Revolved {
+                elements: [nr, nz],
+                around,
+                ..
+            } => (*nr as f64) * (*nr.max(around) as f64) * *nz as f64,
             MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
         };
         n(a.1).total_cmp(&n(b.1))
@@ -377,7 +390,9 @@ fn limits(c: &Check, s: &SceneFile) -> R {
             format!("[{}, {}]", elements[0], elements[1])
         }
         MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
-        MeshSpec::HemisphereShell { elements, .. } => format!("[{}, {}]", elements[0], elements[1]),
+        MeshSpec::HemisphereShell { elements, .. } | MeshSpec::Revolved { elements, .. } => {
+            format!("[{}, {}]", elements[0], elements[1])
+        }
         MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),
     });
     if dofs > lim.max_dofs as f64 {

@@ -58,6 +58,22 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             radius,
             elements,
         } => hemisphere_shell(c, mesh, key, (centre, radius, elements), ext),
+        MeshSpec::Revolved {
+            origin,
+            size,
+            elements,
+            grading,
+            around,
+            core,
+            turn_deg,
+        } => revolved(
+            c,
+            mesh,
+            key,
+            (origin, size, elements, grading),
+            (*around, *core, *turn_deg),
+            ext,
+        ),
         MeshSpec::Annulus {
             centre,
             radius,
@@ -213,6 +229,62 @@ fn annulus(
 
 /// Checks a `box` mesh: a finite origin, positive sizes, at least one element per axis,
 /// positive grading; returns the smallest element edge.
+/// The section of a revolved mesh checked as the box of its extent along r, z and around
+/// (`r₀ ≥ 0`, `around ≥ 1`, `0 < core < 1`).
+fn revolved(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (origin, size, elements, grading): (&[f64; 2], &[f64; 2], &[usize; 2], &[f64; 2]),
+    (around, core, turn_deg): (usize, f64, f64),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    let whole_turns = turn_deg == 90.0 || (origin[0] > 0.0 && (turn_deg == 180.0 || turn_deg == 360.0));
+    if !whole_turns {
+        return Err(c.fail(
+            &sub(mesh, "turn_deg"),
+            &format!("{key}.mesh.turn_deg"),
+            turn_deg,
+            "must be 90, or 180 or 360 for a hollow section (origin[0] > 0)",
+            "model a full section as its quarter (90) with its symmetry planes",
+        ));
+    }
+    if origin[0].is_nan() || origin[0] < 0.0 {
+        return Err(c.fail(
+            &sub(mesh, "origin"),
+            &format!("{key}.mesh.origin[0]"),
+            origin[0],
+            "must be ≥ 0 (the section's least radius)",
+            "give the section in x = r ≥ 0",
+        ));
+    }
+    if around == 0 || !(core > 0.0 && core < 1.0) {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("around = {around}, core = {core}"),
+            "needs around ≥ 1 and 0 < core < 1",
+            "e.g. around = 8, core = 0.5",
+        ));
+    }
+    let r_max = origin[0] + size[0];
+    let box_origin = [origin[0], origin[0], origin[1]];
+    let box_size = [size[0], size[0], size[1]];
+    let h = box_mesh(
+        c,
+        mesh,
+        key,
+        (
+            &box_origin,
+            &box_size,
+            &[elements[0], around, elements[1]],
+            &[grading[0], 1.0, grading[1]],
+        ),
+        ext,
+    )?;
+    Ok(h.min(std::f64::consts::FRAC_PI_2 * r_max / (around.max(2 * elements[0])) as f64))
+}
+
 fn box_mesh(
     c: &Check,
     mesh: &[P],

@@ -258,3 +258,22 @@ fn nagata_patches_are_for_3d_faces_and_the_2d_curves_for_2d() {
         "ok"
     );
 }
+
+#[test]
+fn a_revolved_mesh_is_checked_for_its_counts_and_its_core() {
+    let with = |extra: &[&str]| {
+        let mut sets = vec!["revolution.build=true"];
+        sets.extend_from_slice(extra);
+        outcome("hertz-axisym", &sets)
+    };
+    // the revolved built-in stops only at its rigid-body monitor, which 3D has not yet
+    assert!(with(&[]).contains("a monitor of a rigid body"), "{}", with(&[]));
+    for (set, said) in [
+        ("revolution.core=1.5", "0 < core < 1"),
+        ("revolution.around=0", "around ≥ 1"),
+        ("body.block.mesh.elements=[0, 4]", "must be ≥ 1"),
+    ] {
+        let e = with(&["monitor.0.rigid=\"sphere\"", set]);
+        assert!(e.contains(said) && e.contains("hint:"), "{set}: {e}");
+    }
+}

@@ -96,10 +96,13 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
             MeshSpec::Rectangle { elements: e, .. } | MeshSpec::Annulus { elements: e, .. } => {
                 elements = elements.saturating_add(e[0].saturating_mul(e[1]));
             }
-            MeshSpec::Box { .. } | MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. } => {
+            MeshSpec::Box { .. }
+            | MeshSpec::Gmsh3d { .. }
+            | MeshSpec::HemisphereShell { .. }
+            | MeshSpec::Revolved { .. } => {
                 return Err(ApiError::bad(
                     format!(
-                        "body `{}` is 3D (a `box`, `hemisphere-shell` or `gmsh-3d` mesh)",
+                        "body `{}` is 3D (a `box`, `revolved`, `hemisphere-shell` or `gmsh-3d` mesh)",
                         b.name
                     ),
                     "the service runs 2D scenes only for now: run 3D scenes with `contrail run`",
