@@ -10,6 +10,9 @@
 //!   1, the upper half, compressed 4 %, μ = 0.3): the revolved model's force within 1 % of
 //!   the axisymmetric model's on the same section meshes 8 × 4 and 12 × 6 (measured −0.79 %
 //!   and −0.36 %: the 3D quarter's facets and elements converging on the section's);
+//! - the revolved Hertz scene (`hertz-axisym`, section 8 × 8): the rigid sphere's monitor (in
+//!   3D the sum of the forces its points put on the block) equals the reaction on the block's
+//!   base within 1e-6 of it (equilibrium), and the axisymmetric force within 2 %;
 //! - what has no 3D counterpart is refused with the reason.
 
 use contrail::record::Memory;
@@ -109,6 +112,26 @@ fn the_revolved_disc_barrels_with_the_axisymmetric_force_within_a_per_cent() {
         );
         assert!(diff.abs() <= 0.01, "{diff}");
     }
+}
+
+#[test]
+fn the_revolved_spheres_monitor_is_the_reaction_on_the_base() {
+    let text = contrail::scene::SceneSource::resolve("hertz-axisym")
+        .expect("built in")
+        .text
+        + "\n[[monitor]]\nlabel = \"base\"\nbody = \"block\"\nnodes = \"bottom\"\ncomponent = \"y\"\n";
+    let mesh = sets(&["body.block.mesh.elements=[8, 8]"]);
+    let axisymmetric = monitor_force("hertz.toml", Some(&text), &mesh, "sphere");
+    let mut revolved = mesh.clone();
+    revolved.push("revolution.build=true".into());
+    let sphere = monitor_force("hertz.toml", Some(&text), &revolved, "sphere");
+    let base = monitor_force("hertz.toml", Some(&text), &revolved, "base");
+    println!("axisymmetric {axisymmetric:.6}; revolved: sphere {sphere:.8}, base {base:.8}");
+    assert!((sphere / base - 1.0).abs() <= 1e-6, "{sphere} against {base}");
+    assert!(
+        (sphere / axisymmetric - 1.0).abs() <= 0.02,
+        "{sphere} against {axisymmetric}"
+    );
 }
 
 #[test]

@@ -128,6 +128,9 @@ pub enum MonitorTarget {
     /// A node set of a 3D body, turned about the axis along the monitor's component through
     /// `point`: the set's turn about it (radians) and the moment of its forces about it.
     Moment { nodes: Vec<usize>, point: [f64; 3] },
+    /// A rigid surface of the 3D contact pairs (by name): its prescribed travel and the force
+    /// its drive applies, the sum of the forces its contact points put on their slaves.
+    RigidSurface(String),
 }
 
 /// One load–displacement monitor: a displacement and a force in one direction.

@@ -2,8 +2,7 @@
 //! bodies' hexahedral meshes, then the same fixes, loads and monitors as in 2D
 //! (`build_steps.rs`, generic over the dimension), the rigid planes and spheres and the
 //! contact pairs (`build_surface_pairs.rs`). What 3D does not have yet — pressures, body
-//! loads, skew supports, rigid-body monitors, the 2D body models — is refused, naming the
-//! missing feature.
+//! loads, skew supports, the 2D body models — is refused, naming the missing feature.
 
 use super::build::Ctx;
 use super::types::{BodyModel, MeshSpec, SceneFile};
@@ -51,15 +50,9 @@ fn refuse_2d_only(cx: &Ctx, s: &SceneFile) -> Result<(), SceneError> {
         cx.err(
             near,
             format!("this scene has 3D bodies (a `box` mesh) and {what}: not in contrail's 3D models yet"),
-            "surface loads and rigid-body monitors come in a later slice of issue 33; remove them, or mesh the bodies in 2D",
+            "surface and body loads come in a later slice of issue 33; remove them, or mesh the bodies in 2D",
         )
     };
-    if let Some(mon) = s.monitors.iter().find(|m| m.rigid.is_some()) {
-        return Err(missing(
-            &mon.label,
-            "a monitor of a rigid body (`rigid` in [[monitor]])",
-        ));
-    }
     if !s.pressures.is_empty() {
         return Err(missing("pressure", "pressures ([[pressure]])"));
     }

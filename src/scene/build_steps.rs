@@ -336,6 +336,21 @@ pub(super) fn add_contacts(cx: &Ctx, s: &SceneFile, m: &mut Model) -> Result<(),
 pub(in crate::scene) fn add_monitors<S: Dim>(cx: &Ctx, s: &SceneFile, m: &mut Model<S>) -> Result<(), SceneError> {
     for mon in s.monitors.iter() {
         let target = match (&mon.rigid, &mon.body, &mon.nodes) {
+            (Some(r), None, None) if S::D == 3 => {
+                let paired = (m.surface_contacts.iter())
+                    .any(|p| matches!(&p.master, crate::model::SurfaceMaster::Rigid(rs) if &rs.name == r));
+                if !paired {
+                    return Err(cx.err(
+                        &mon.label,
+                        format!(
+                            "monitor `{}`: no contact pair has the rigid surface `{r}` as its master",
+                            mon.label
+                        ),
+                        "name a rigid surface that a [[contact]] presses on, or monitor a node set",
+                    ));
+                }
+                MonitorTarget::RigidSurface(r.clone())
+            }
             (Some(r), None, None) => MonitorTarget::Rigid(rigid_index(cx, m, r)?),
             (None, Some(b), Some(sel)) => {
                 let bi = body_index(cx, m, b)?;

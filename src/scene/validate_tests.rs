@@ -266,14 +266,33 @@ fn a_revolved_mesh_is_checked_for_its_counts_and_its_core() {
         sets.extend_from_slice(extra);
         outcome("hertz-axisym", &sets)
     };
-    // the revolved built-in stops only at its rigid-body monitor, which 3D has not yet
-    assert!(with(&[]).contains("a monitor of a rigid body"), "{}", with(&[]));
+    assert_eq!(with(&[]), "ok");
     for (set, said) in [
         ("revolution.core=1.5", "0 < core < 1"),
         ("revolution.around=0", "around ≥ 1"),
         ("body.block.mesh.elements=[0, 4]", "must be ≥ 1"),
     ] {
-        let e = with(&["monitor.0.rigid=\"sphere\"", set]);
+        let e = with(&[set]);
         assert!(e.contains(said) && e.contains("hint:"), "{set}: {e}");
     }
+    // a monitor of a rigid surface no pair presses on
+    let text = SceneSource::resolve("hertz-axisym").unwrap().text
+        + "\n[[rigid]]\nname = \"lid\"\npolyline = [[2.0, 1.0], [0.0, 1.0]]\n";
+    let src = SceneSource {
+        origin: "t.toml".into(),
+        text,
+    };
+    let sets = [
+        "revolution.build=true".to_string(),
+        "monitor.0.rigid=\"lid\"".to_string(),
+    ];
+    let unpaired = parse(&src, &sets)
+        .and_then(|s| crate::scene::build_any(&src, &s))
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        unpaired.contains("no contact pair has the rigid surface `lid`"),
+        "{unpaired}"
+    );
 }

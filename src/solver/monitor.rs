@@ -21,7 +21,8 @@
 use crate::assembly::Assembler;
 use crate::contact::events::PointSnapshot;
 use crate::contact::law::ContactState;
-use crate::model::{Dim, Master, Model, Monitor, MonitorTarget, Slave};
+use crate::contact3d::system::SurfaceSnapshot;
+use crate::model::{Dim, Master, Model, Monitor, MonitorTarget, Slave, SurfaceMaster};
 use crate::record::MonitorRecord;
 
 /// The records of all monitors of `model` at the converged state `u`, load level `t`.
@@ -30,12 +31,12 @@ pub fn records<S: Dim>(
     asm: &Assembler<S>,
     u: &[f64],
     t: f64,
-    points: &[PointSnapshot],
+    (points, surface): (&[PointSnapshot], &[SurfaceSnapshot]),
 ) -> Vec<MonitorRecord> {
     model
         .monitors
         .iter()
-        .map(|m| record(model, m, asm, u, t, points))
+        .map(|m| record(model, m, asm, u, t, (points, surface)))
         .collect()
 }
 
@@ -45,7 +46,7 @@ fn record<S: Dim>(
     asm: &Assembler<S>,
     u: &[f64],
     t: f64,
-    points: &[PointSnapshot],
+    (points, surface): (&[PointSnapshot], &[SurfaceSnapshot]),
 ) -> MonitorRecord {
     let (displacement, force) = match &m.target {
         MonitorTarget::Nodes(nodes) => {
@@ -68,6 +69,7 @@ fn record<S: Dim>(
             // the drive's force: the negative of the contact force received
             (travel, -rigid_contact_force(model.plane(), *r, points)[m.component])
         }
+        MonitorTarget::RigidSurface(name) => rigid_surface(model, name, t, surface, m.component),
     };
     MonitorRecord {
         label: m.label.clone(),
@@ -108,6 +110,30 @@ fn moment<S: Dim>(
         m += b[0] * force(j) - b[1] * force(i);
     }
     (sin.atan2(cos), m)
+}
+
+/// A 3D rigid surface's travel along `c` and its drive's force: the sum of the assembled
+/// forces of the closed points of the pairs whose master it is, on their slaves (the surface
+/// receives their negative; its drive holds it with the negative of that).
+fn rigid_surface<S: Dim>(model: &Model<S>, name: &str, t: f64, surface: &[SurfaceSnapshot], c: usize) -> (f64, f64) {
+    let Some(solid) = S::solid(model) else {
+        return (0.0, 0.0);
+    };
+    let is_it = |pair: usize| matches!(solid.surface_contacts.get(pair).map(|p| &p.master), Some(SurfaceMaster::Rigid(r)) if r.name == name);
+    let travel = (solid.surface_contacts.iter())
+        .find_map(|p| match &p.master {
+            SurfaceMaster::Rigid(r) if r.name == name => Some(r.offset(t)[c]),
+            _ => None,
+        })
+        .unwrap_or(0.0);
+    let closed = |p: &&SurfaceSnapshot| p.eval.is_some_and(|e| e.state != ContactState::Open);
+    let force = surface
+        .iter()
+        .filter(closed)
+        .filter(|p| is_it(p.pair))
+        .map(|p| p.force[c])
+        .sum();
+    (travel, force)
 }
 
 /// Sum of the contact forces rigid body `r` receives (x, y).

@@ -220,7 +220,8 @@ impl<S: Dim> Stepping<'_, S> {
             }
             None => (Vec::new(), Vec::new()),
         };
-        let monitors = crate::solver::monitor::records(self.model, &self.asm, &self.committed.u, self.t, &snapshots);
+        let monitors =
+            crate::solver::monitor::records(self.model, &self.asm, &self.committed.u, self.t, (&snapshots, &surface));
         let imbalance =
             crate::solver::equilibrium::worst_imbalance(self.model, &self.asm, self.t, &snapshots, &surface, self.fref);
         let committing = Instant::now();
