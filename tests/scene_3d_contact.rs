@@ -322,9 +322,10 @@ sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }
         )
     );
     refused(&point_slave, &["`slave.rigid`"]);
-    // a rigid body's monitor
+    // a rigid surface's monitor builds (it was refused before 3D had one)
     let monitor = "[monitor]\nlabel = \"force\"\nrigid = \"tool\"\ncomponent = \"z\"\n";
-    refused(&format!("{BODIES}{plane}{PRESS}{monitor}"), &["monitor", "rigid"]);
+    let m = build(&format!("{BODIES}{plane}{PRESS}{monitor}")).expect("a rigid surface's monitor");
+    assert!(matches!(&m.monitors[0].target, contrail::model::MonitorTarget::RigidSurface(n) if n == "tool"));
 }
 
 #[test]

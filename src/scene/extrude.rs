@@ -24,10 +24,10 @@
 //! refused with the reason.
 
 use super::mesh_spec::{Bias, MeshSpec};
+use super::plane_to_3d::{contact_pairs, scaled, start, table_err};
 use super::rigid_spec::{CylinderSpec, MotionSpec, PlaneSpec};
 use super::types::{BodyModel, Component, FixSpec, NodeSelection, RampSpec, RigidSpec, SceneFile, WhereSpec};
 use super::{SceneError, SceneSource};
-use crate::model::mesh::{axis_coords, AxisGrading};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -103,38 +103,14 @@ fn err(src: &SceneSource, message: String, hint: &str) -> SceneError {
     table_err(src, "extrusion", message, hint)
 }
 
-/// A refusal of `[table] build = true`, located at the table.
-pub(super) fn table_err(src: &SceneSource, table: &str, message: String, hint: &str) -> SceneError {
-    let location = src.text.find(&format!("[{table}]")).map_or(String::new(), |off| {
-        let (l, c) = super::line_col(&src.text, off);
-        format!(":{l}:{c}")
-    });
-    SceneError::Invalid {
-        origin: src.origin.clone(),
-        location,
-        message: format!("[{table}] build = true: {message}"),
-        hint: hint.into(),
-    }
-}
-
 fn extrude(src: &SceneSource, s: &SceneFile, e: &ExtrusionSpec) -> Result<SceneFile, SceneError> {
     let part = part(src, s, e)?;
-    if !s.body_loads.is_empty() || !s.pressures.is_empty() {
-        return Err(err(
-            src,
-            "body loads and pressures are not extruded".into(),
-            "give the load as nodal [[load]] totals, or build the scene in 2D",
-        ));
-    }
-    let mut out = s.clone();
-    out.extrusion = None;
-    out.revolution = None;
-    out.description = format!(
-        "{} — built in 3D as its extrusion ({} of length {} along y)",
-        s.description,
+    let what = format!(
+        "its extrusion ({} of length {} along y)",
         if part.held_everywhere { "a slice" } else { "half" },
         part.modelled
     );
+    let mut out = start(src, "extrusion", s, &what)?;
     for b in &mut out.bodies {
         b.mesh = boxed(src, &b.name, &b.mesh, e, part.modelled)?;
         b.model = BodyModel::PlaneStrain;
@@ -171,33 +147,8 @@ fn extrude(src: &SceneSource, s: &SceneFile, e: &ExtrusionSpec) -> Result<SceneF
     for r in &mut out.rigid {
         rigid(src, r)?;
     }
-    for (c, c2) in out.contacts.iter_mut().zip(&s.contacts) {
-        if c.slave.rigid.is_some() || c.master_smoothing.is_some() {
-            return Err(err(
-                src,
-                format!(
-                    "contact `{}`: a rigid slave point or a smoothed 2D master has no 3D extrusion",
-                    c.name
-                ),
-                "build this scene in 2D",
-            ));
-        }
-        let h = slave_spacing(s, c2);
-        c.eps_n /= h;
-        c.eps_t /= h;
-        let body = c.slave.body.clone().unwrap_or_default();
-        c.slave.nodes = c
-            .slave
-            .nodes
-            .as_ref()
-            .map(|n| selection(src, s, &body, n))
-            .transpose()?;
-        c.master.face = c
-            .master
-            .face
-            .as_ref()
-            .map(|f| f.split('+').map(face).collect::<Vec<_>>().join("+"));
-    }
+    let nodes = |body: &str, n: &NodeSelection| selection(src, s, body, n);
+    contact_pairs(src, "extrusion", s, &mut out, &nodes, &|_, f: &str| Ok(face(f)))?;
     for m in &mut out.monitors.0 {
         let body = m.body.clone().unwrap_or_default();
         m.nodes = m.nodes.as_ref().map(|n| selection(src, s, &body, n)).transpose()?;
@@ -349,14 +300,6 @@ fn selection(src: &SceneSource, s: &SceneFile, body: &str, n: &NodeSelection) ->
     })
 }
 
-/// A history multiplied by `k`.
-pub(super) fn scaled(r: &RampSpec, k: f64) -> RampSpec {
-    match r {
-        RampSpec::Final(v) => RampSpec::Final(v * k),
-        RampSpec::Path(p) => RampSpec::Path(p.iter().map(|[t, v]| [*t, v * k]).collect()),
-    }
-}
-
 /// A rigid line or disc as its extrusion along `y`; motions in the plane move alike.
 fn rigid(src: &SceneSource, r: &mut RigidSpec) -> Result<(), SceneError> {
     let name = r.name.clone();
@@ -402,36 +345,6 @@ fn rigid(src: &SceneSource, r: &mut RigidSpec) -> Result<(), SceneError> {
         z: m.y,
     };
     Ok(())
-}
-
-/// The smallest element edge along a contact's slave side (1 for a single node: a 3D edge
-/// slave's penalty is per unit length, as a 2D node's is per unit thickness).
-pub(super) fn slave_spacing(s: &SceneFile, c: &super::types::ContactSpec) -> f64 {
-    let (Some(body), Some(nodes)) = (&c.slave.body, &c.slave.nodes) else {
-        return 1.0;
-    };
-    let Some(MeshSpec::Rectangle {
-        size,
-        elements,
-        grading,
-        ..
-    }) = s.bodies.iter().find(|b| &b.name == body).map(|b| &b.mesh)
-    else {
-        return 1.0;
-    };
-    let coords = |k: usize| axis_coords(size[k], elements[k], AxisGrading::End(grading[k]));
-    let along = match nodes {
-        NodeSelection::Named(n) if n == "top" || n == "bottom" => Some(coords(0)),
-        NodeSelection::Named(n) if n == "left" || n == "right" => Some(coords(1)),
-        NodeSelection::Where(w) if w.x.is_some() != w.y.is_some() => {
-            Some(if w.x.is_some() { coords(1) } else { coords(0) })
-        }
-        _ => None,
-    };
-    along
-        .map(|c| c.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min))
-        .filter(|h| h.is_finite() && *h > 0.0)
-        .unwrap_or(1.0)
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ pub mod model_advice_axisym;
 pub mod monitors;
 mod overclosure;
 mod overrides;
+mod plane_to_3d;
 pub mod pressure;
 pub mod revolve;
 pub mod rigid_spec;

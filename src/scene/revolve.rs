@@ -14,8 +14,8 @@
 //! or load off the axis, a cone or a torus, a rigid body moved sideways — is refused with the
 //! reason.
 
-use super::extrude::{scaled, slave_spacing, table_err};
 use super::mesh_spec::{Bias, MeshSpec};
+use super::plane_to_3d::{contact_pairs, scaled, start, table_err};
 use super::rigid_spec::{MotionSpec, PlaneSpec, SphereSpec};
 use super::types::{BodyModel, Component, FixSpec, NodeSelection, RampSpec, RigidSpec, SceneFile, WhereSpec};
 use super::{SceneError, SceneSource};
@@ -58,17 +58,7 @@ pub fn revolve(src: &SceneSource, s: &SceneFile, r: &RevolutionSpec) -> Result<S
             "revolve axisymmetric scenes; extrude plane ones ([extrusion])",
         ));
     }
-    if !s.body_loads.is_empty() || !s.pressures.is_empty() {
-        return Err(err(
-            src,
-            "body loads and pressures are not revolved".into(),
-            "give the load as nodal [[load]] totals, or build the scene in 2D",
-        ));
-    }
-    let mut out = s.clone();
-    out.extrusion = None;
-    out.revolution = None;
-    out.description = format!("{} — built in 3D as the quarter of its revolution", s.description);
+    let mut out = start(src, "revolution", s, "the quarter of its revolution")?;
     for b in &mut out.bodies {
         b.mesh = revolved(src, &b.name, &b.mesh, r)?;
         b.model = BodyModel::PlaneStrain;
@@ -102,43 +92,16 @@ pub fn revolve(src: &SceneSource, s: &SceneFile, r: &RevolutionSpec) -> Result<S
     for rb in &mut out.rigid {
         rigid(src, rb)?;
     }
-    for (c, c2) in out.contacts.iter_mut().zip(&s.contacts) {
-        if c.slave.rigid.is_some() || c.master_smoothing.is_some() {
-            return Err(err(
-                src,
-                format!(
-                    "contact `{}`: a rigid slave point or a smoothed 2D master is not revolved",
-                    c.name
-                ),
-                "build this scene in 2D",
-            ));
-        }
-        let h = slave_spacing(s, c2);
-        c.eps_n /= h;
-        c.eps_t /= h;
-        let body = c.slave.body.clone().unwrap_or_default();
-        c.slave.nodes = c
-            .slave
-            .nodes
-            .as_ref()
-            .map(|n| selection(src, s, &body, n))
-            .transpose()?;
-        let master = c.master.body.clone().unwrap_or_default();
-        if let Some(face) = &c.master.face {
-            let faces: Result<Vec<String>, SceneError> = face
-                .split('+')
-                .map(|f| match selection(src, s, &master, &NodeSelection::Named(f.into()))? {
-                    NodeSelection::Named(n) if n != "axis" => Ok(n),
-                    _ => Err(err(
-                        src,
-                        format!("contact `{}`: the face `{f}` lies on the axis", c.name),
-                        "name a face off the axis",
-                    )),
-                })
-                .collect();
-            c.master.face = Some(faces?.join("+"));
-        }
-    }
+    let nodes = |body: &str, n: &NodeSelection| selection(src, s, body, n);
+    let faces = |body: &str, f: &str| match selection(src, s, body, &NodeSelection::Named(f.into()))? {
+        NodeSelection::Named(n) if n != "axis" => Ok(n),
+        _ => Err(err(
+            src,
+            format!("the face `{f}` of `{body}` lies on the axis"),
+            "name a face off the axis",
+        )),
+    };
+    contact_pairs(src, "revolution", s, &mut out, &nodes, &faces)?;
     for m in &mut out.monitors.0 {
         let body = m.body.clone().unwrap_or_default();
         m.nodes = m.nodes.as_ref().map(|n| selection(src, s, &body, n)).transpose()?;
