@@ -95,10 +95,36 @@ fn check_advises_the_plane_or_axisymmetric_model_of_a_3d_scene() {
         out.contains("a plane-strain model of the section would do, with about 2542 DOFs instead of 7626"),
         "{out}"
     );
-    for set in ["fix.2.nodes=ymin", "rigid.0.cylinder.axis=[0.1, 1.0, 0.0]"] {
-        let out = text(&contrail(&["check", s(&cyl), "--set", set])).0;
-        assert!(out.contains(": ok —") && !out.contains("advice"), "{set}: {out}");
+    // (a block 2 long held on its mid-plane is half of a thick block: no plate)
+    for sets in [
+        &[
+            "--set",
+            "fix.2.nodes=ymin",
+            "--set",
+            "body.block.mesh.size=[2.0, 1.0, 2.0]",
+        ][..],
+        &["--set", "rigid.0.cylinder.axis=[0.1, 1.0, 0.0]"][..],
+    ] {
+        let out = text(&contrail(&[&["check", s(&cyl)][..], sets].concat())).0;
+        assert!(out.contains(": ok —") && !out.contains("advice"), "{sets:?}: {out}");
     }
+    // the plate over an edge written in 3D (half the plate, its mid-plane held; the block a
+    // held body): plane stress
+    let plate = [
+        "check",
+        "strip-channel-3d",
+        "--set",
+        "body.strip.mesh.size=[12.0, 0.05, 0.5]",
+        "--set",
+        "body.block.mesh.size=[13.5, 0.05, 40.0]",
+        "--set",
+        "fix.1.nodes=ymin",
+    ];
+    let out = text(&contrail(&plate)).0;
+    assert!(out.contains("a plane-stress model of the section would do"), "{out}");
+    // the axisymmetric Hertz scene built in 3D: the axisymmetric model would do
+    let out = text(&contrail(&["check", "hertz-axisym", "--set", "revolution.build=true"])).0;
+    assert!(out.contains("the quarter of a body of revolution about z"), "{out}");
     // the quarter of a disc between plates: an axisymmetric model would do
     let disc = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/disc-3d.toml");
     let out = text(&contrail(&["check", s(&disc)])).0;

@@ -1,7 +1,7 @@
 //! The faces of a hexahedral mesh: the six faces of the kernel's hexahedron (Gmsh/VTK node
 //! order) and the boundary of a mesh (the faces that belong to one hexahedron only).
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// The faces of the kernel's hexahedron, each with its outward normal `(x₁ − x₀) × (x₃ − x₀)`.
 pub const HEX_FACES: [[usize; 4]; 6] = [
@@ -31,6 +31,18 @@ pub fn boundary_quads(hexes: &[[usize; 8]]) -> Vec<[usize; 4]> {
     }
     (order.iter())
         .filter_map(|k| seen.get(k).filter(|(n, _)| *n == 1).map(|(_, q)| *q))
+        .collect()
+}
+
+/// The node set of each named face: its quadrilaterals' distinct nodes, ascending.
+pub fn face_node_sets(faces: &BTreeMap<String, Vec<[usize; 4]>>) -> BTreeMap<String, Vec<usize>> {
+    (faces.iter())
+        .map(|(name, quads)| {
+            let mut set: Vec<usize> = quads.iter().flatten().copied().collect();
+            set.sort_unstable();
+            set.dedup();
+            (name.clone(), set)
+        })
         .collect()
 }
 

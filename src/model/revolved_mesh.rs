@@ -17,7 +17,7 @@
 //! sections) and `all`.
 
 use super::box_mesh::BoxMesh;
-use super::hex_boundary::boundary_quads;
+use super::hex_boundary::{boundary_quads, face_node_sets};
 use std::collections::BTreeMap;
 
 /// The quarter mesh of the section with radial node coordinates `r` (increasing, `r[0] ≥ 0`)
@@ -69,14 +69,7 @@ pub fn revolution(r: &[f64], z: &[f64], (around, quarters): (usize, usize), core
             faces.entry(NAMES[k].to_string()).or_default().push(f);
         }
     }
-    let mut node_sets: BTreeMap<String, Vec<usize>> = (faces.iter())
-        .map(|(name, quads)| {
-            let mut set: Vec<usize> = quads.iter().flatten().copied().collect();
-            set.sort_unstable();
-            set.dedup();
-            (name.clone(), set)
-        })
-        .collect();
+    let mut node_sets = face_node_sets(&faces);
     if r[0] == 0.0 {
         node_sets.insert(
             "axis".into(),

@@ -10,7 +10,7 @@
 //! through the thickness, evenly spaced in radius.
 
 use super::box_mesh::BoxMesh;
-use super::hex_boundary::boundary_quads;
+use super::hex_boundary::{boundary_quads, face_node_sets};
 use crate::contact3d::vec3::{cross, dot, norm, sub};
 use std::collections::{BTreeMap, HashMap};
 
@@ -48,14 +48,7 @@ pub fn hemisphere_shell(centre: [f64; 3], radius: [f64; 2], n: usize, layers: us
         };
         faces.entry(name.to_string()).or_default().push(f);
     }
-    let mut node_sets: BTreeMap<String, Vec<usize>> = (faces.iter())
-        .map(|(name, quads)| {
-            let mut set: Vec<usize> = quads.iter().flatten().copied().collect();
-            set.sort_unstable();
-            set.dedup();
-            (name.clone(), set)
-        })
-        .collect();
+    let mut node_sets = face_node_sets(&faces);
     node_sets.insert("all".into(), (0..nodes.len()).collect());
     BoxMesh {
         nodes,

@@ -4,16 +4,19 @@
 //! the body is thin and its faces free.
 //!
 //! The rules read the built model, not the scene's words: along axis `k`,
-//! - **extruded**: every column of nodes (the same other two coordinates) has a node at each
-//!   of the same levels along `k`;
+//! - **extruded**: every column of nodes (of one body, the same other two coordinates) has a
+//!   node at each of the same levels along `k`;
 //! - **nothing along k**: no load, prescribed motion, rigid plane normal or rigid motion has a
 //!   `k` component, and there is no rigid sphere (a sphere is no extrusion);
 //! - **the same along k**: every prescribed component (other than `k`) of a node is
 //!   prescribed alike at every node of its column, and a loaded one loaded at every node of
 //!   it (a load is split by tributary lengths, so its share is not compared);
 //! - **plane strain**: every node on both end faces is held at zero along `k`, nothing else;
-//!   **plane stress**: nothing held along `k`, and the body no thicker than a tenth of its
-//!   least other extent.
+//!   **plane stress**: nothing held along `k`, or every node of one end face at zero (the
+//!   mid-plane of half a plate), and the plate no thicker than a tenth of its least other
+//!   extent;
+//! - nodes held still in every component (a held body standing for a rigid one) are left out
+//!   of the holds along `k`.
 //!
 //! The advice gives the plane model's degrees of freedom (two per column) against the 3D
 //! model's. It is advice: a scene that passes it may still want 3D (a load that the rules do
@@ -44,7 +47,10 @@ impl PlaneAdvice {
         let axis = ["x", "y", "z"][self.axis];
         let what = match self.model {
             "plane-strain" => format!("held at u_{axis} = 0 on both ends"),
-            _ => format!("thin ({:.3e}) and free along {axis}", self.thickness),
+            _ => format!(
+                "a thin plate ({:.3e} thick; whole or its half held on the mid-plane) free along {axis}",
+                self.thickness
+            ),
         };
         format!(
             "advice: this scene is the extrusion of a section along {axis}, loaded and held alike along it and {what}: a {} model of the section would do, with about {} DOFs instead of {} ({:.0}× fewer)",
@@ -74,16 +80,24 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
     let (lo, hi) = extent(k);
     let size = (0..3).map(|a| extent(a).1 - extent(a).0).fold(0.0, f64::max);
     let tol = 1e-9 * size.max(f64::MIN_POSITIVE);
-    let key = |p: &[f64; 3]| {
+    // a column: the nodes of one body with the same other two coordinates (two bodies may
+    // touch at a node position)
+    let body_of = |i: usize| {
+        m.bodies
+            .iter()
+            .position(|b| (b.first_node..b.first_node + b.node_count).contains(&i))
+    };
+    let key = |i: usize| {
+        let p = &m.nodes[i];
         let q: Vec<i64> = (0..3)
             .filter(|a| *a != k)
             .map(|a| (p[a] / tol).round() as i64)
             .collect();
-        (q[0], q[1])
+        (body_of(i), q[0], q[1])
     };
-    let mut columns: BTreeMap<(i64, i64), Vec<usize>> = BTreeMap::new();
-    for (i, p) in m.nodes.iter().enumerate() {
-        columns.entry(key(p)).or_default().push(i);
+    let mut columns: BTreeMap<(Option<usize>, i64, i64), Vec<usize>> = BTreeMap::new();
+    for i in 0..m.nodes.len() {
+        columns.entry(key(i)).or_default().push(i);
     }
     let levels = |c: &Vec<usize>| {
         let mut l: Vec<i64> = c.iter().map(|&i| (m.nodes[i][k] / tol).round() as i64).collect();
@@ -120,22 +134,35 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
         let z = m.nodes[i][k];
         (z - lo).abs() <= tol || (z - hi).abs() <= tol
     };
-    let held_k: Vec<usize> = (0..n).filter(|&i| held[i][k].is_some()).collect();
+    // nodes held still in every component are a held (rigid) body's: they say nothing of
+    // the deformable part's model
+    let still = |i: usize| held[i].iter().all(|h| h.is_some_and(|r| r.is_zero()));
+    let held_k: Vec<usize> = (0..n).filter(|&i| held[i][k].is_some() && !still(i)).collect();
     if held_k.iter().any(|&i| !held[i][k].unwrap().is_zero()) {
         return None;
     }
-    let ends: Vec<usize> = (0..n).filter(|&i| at_end(i)).collect();
-    let thickness = hi - lo;
+    let on = |level: f64| {
+        (0..n)
+            .filter(move |&i| (m.nodes[i][k] - level).abs() <= tol && !still(i))
+            .collect::<Vec<_>>()
+    };
+    let ends: Vec<usize> = (0..n).filter(|&i| at_end(i) && !still(i)).collect();
     let least_other = (0..3)
         .filter(|a| *a != k)
         .map(|a| extent(a).1 - extent(a).0)
         .fold(f64::MAX, f64::min);
-    let model = if held_k == ends {
-        "plane-strain"
-    } else if held_k.is_empty() && thickness <= THIN * least_other {
-        "plane-stress"
+    // a plate whole (nothing held along k), or its half held on its mid-plane
+    let plate = if held_k.is_empty() {
+        Some(hi - lo)
+    } else if held_k == on(lo) || held_k == on(hi) {
+        Some(2.0 * (hi - lo))
     } else {
-        return None;
+        None
+    };
+    let (model, thickness) = match plate {
+        _ if held_k == ends => ("plane-strain", hi - lo),
+        Some(t) if t <= THIN * least_other => ("plane-stress", t),
+        _ => return None,
     };
     Some(PlaneAdvice {
         axis: k,
@@ -226,6 +253,11 @@ components = ["z"]
         assert_eq!((a.axis, a.model), (2, "plane-stress"));
         assert!((a.thickness - 0.05).abs() < 1e-12);
         assert_eq!(advice(&block("0.5", "2", "")), None, "thick and free: 3D");
+        // half of a plate 0.05 thick, held on its mid-plane z = 0
+        let mid = "\n[[fix]]\nbody = \"block\"\nnodes = \"zmin\"\ncomponents = [\"z\"]\n";
+        let half = advice(&block("0.025", "1", mid)).expect("half a plate");
+        assert_eq!((half.axis, half.model), (2, "plane-stress"));
+        assert!((half.thickness - 0.05).abs() < 1e-12 && half.line().contains("half held on the mid-plane"));
     }
 
     #[test]
