@@ -68,34 +68,56 @@ pub fn plane_advice(m: &Model<Solid>) -> Option<PlaneAdvice> {
 }
 
 fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
-    let n = m.nodes.len();
-    if n == 0 {
+    if m.nodes.is_empty() {
         return None;
     }
-    let extent = |a: usize| {
-        m.nodes
-            .iter()
-            .fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p[a]), h.max(p[a])))
-    };
-    let (lo, hi) = extent(k);
-    let size = (0..3).map(|a| extent(a).1 - extent(a).0).fold(0.0, f64::max);
+    let size = (0..3).map(|a| extent(m, a).1 - extent(m, a).0).fold(0.0, f64::max);
     let tol = 1e-9 * size.max(f64::MIN_POSITIVE);
-    // a column: the nodes of one body with the same other two coordinates (two bodies may
-    // touch at a node position)
-    let body_of = |i: usize| {
-        m.bodies
-            .iter()
-            .position(|b| (b.first_node..b.first_node + b.node_count).contains(&i))
-    };
+    let columns = extruded_columns(m, k, tol)?;
+    // a turned node set moves each node its own way: not a plane model's load
+    let turned = m.prescribed.iter().any(|p| p.turn.is_some());
+    if turned || !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !l.ramp.is_zero()) {
+        return None;
+    }
+    // per node and component: the prescribed ramp (`None` free)
+    let mut held: Vec<[Option<&Ramp>; 3]> = vec![[None; 3]; m.nodes.len()];
+    for p in &m.prescribed {
+        held[p.dof / 3][p.dof % 3] = Some(&p.ramp);
+    }
+    if !alike_in_columns(m, k, &columns, &held) {
+        return None;
+    }
+    let (model, thickness) = plane_model(m, k, tol, &held)?;
+    Some(PlaneAdvice {
+        axis: k,
+        model,
+        thickness,
+        dofs_3d: m.dof_count(),
+        dofs_plane: 2 * columns.len(),
+    })
+}
+
+/// Columns of nodes by (body, the two coordinates across the axis, in units of the tolerance).
+type Columns = BTreeMap<(Option<usize>, i64, i64), Vec<usize>>;
+
+/// The least and greatest coordinate `a` of the model's nodes.
+fn extent(m: &Model<Solid>, a: usize) -> (f64, f64) {
+    (m.nodes.iter()).fold((f64::MAX, f64::MIN), |(l, h), p| (l.min(p[a]), h.max(p[a])))
+}
+
+/// The columns along `k` — the nodes of one body with the same other two coordinates (two
+/// bodies may touch at a node position) — when every column has a node at each of the same
+/// levels along `k` (`None` otherwise).
+fn extruded_columns(m: &Model<Solid>, k: usize, tol: f64) -> Option<Columns> {
+    let body_of = |i: usize| (m.bodies.iter()).position(|b| (b.first_node..b.first_node + b.node_count).contains(&i));
     let key = |i: usize| {
-        let p = &m.nodes[i];
         let q: Vec<i64> = (0..3)
             .filter(|a| *a != k)
-            .map(|a| (p[a] / tol).round() as i64)
+            .map(|a| (m.nodes[i][a] / tol).round() as i64)
             .collect();
         (body_of(i), q[0], q[1])
     };
-    let mut columns: BTreeMap<(Option<usize>, i64, i64), Vec<usize>> = BTreeMap::new();
+    let mut columns = Columns::new();
     for i in 0..m.nodes.len() {
         columns.entry(key(i)).or_default().push(i);
     }
@@ -105,53 +127,47 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
         l
     };
     let first = levels(columns.values().next()?);
-    if first.len() < 2 || !columns.values().all(|c| levels(c) == first) {
-        return None;
-    }
-    // a turned node set moves each node its own way: not a plane model's load
-    let turned = m.prescribed.iter().any(|p| p.turn.is_some());
-    if turned || !rigid_surfaces_extruded(m, k) || m.loads.iter().any(|l| l.dof % 3 == k && !l.ramp.is_zero()) {
-        return None;
-    }
-    // per node and component: the prescribed ramp (`None` free), then the loads
-    let mut held: Vec<[Option<&Ramp>; 3]> = vec![[None; 3]; n];
-    for p in &m.prescribed {
-        held[p.dof / 3][p.dof % 3] = Some(&p.ramp);
-    }
-    // a load is split over a column by the nodes' tributary lengths (an end node carries
-    // half): alike means loaded at every node of the column or at none
-    let mut loaded = vec![[false; 3]; n];
+    (first.len() >= 2 && columns.values().all(|c| levels(c) == first)).then_some(columns)
+}
+
+/// Every column held alike in the components across `k`, and loaded at all its nodes or at
+/// none (a load is split over a column by the nodes' tributary lengths: an end node carries
+/// half, so its share is not compared).
+fn alike_in_columns(m: &Model<Solid>, k: usize, columns: &Columns, held: &[[Option<&Ramp>; 3]]) -> bool {
+    let mut loaded = vec![[false; 3]; m.nodes.len()];
     for l in &m.loads {
         loaded[l.dof / 3][l.dof % 3] = true;
     }
     let others = || (0..3).filter(|a| *a != k);
     let held_alike = |c: &Vec<usize>| others().all(|a| c.iter().all(|&i| held[i][a] == held[c[0]][a]));
     let loaded_alike = |c: &Vec<usize>| others().all(|a| c.iter().all(|&i| loaded[i][a] == loaded[c[0]][a]));
-    if !columns.values().all(|c| held_alike(c) && loaded_alike(c)) {
-        return None;
-    }
-    let at_end = |i: usize| {
-        let z = m.nodes[i][k];
-        (z - lo).abs() <= tol || (z - hi).abs() <= tol
-    };
-    // nodes held still in every component are a held (rigid) body's: they say nothing of
-    // the deformable part's model
+    columns.values().all(|c| held_alike(c) && loaded_alike(c))
+}
+
+/// The plane model the holds along `k` make, with its thickness: plane strain when both end
+/// faces and nothing else are held at zero along `k`; plane stress for a thin plate with
+/// nothing held along `k`, or half of one held on its mid-plane (one end face). Nodes held
+/// still in every component are a held (rigid) body's and say nothing of the model.
+fn plane_model(m: &Model<Solid>, k: usize, tol: f64, held: &[[Option<&Ramp>; 3]]) -> Option<(&'static str, f64)> {
+    let n = m.nodes.len();
+    let (lo, hi) = extent(m, k);
     let still = |i: usize| held[i].iter().all(|h| h.is_some_and(|r| r.is_zero()));
     let held_k: Vec<usize> = (0..n).filter(|&i| held[i][k].is_some() && !still(i)).collect();
-    if held_k.iter().any(|&i| !held[i][k].unwrap().is_zero()) {
+    if held_k.iter().any(|&i| held[i][k].is_some_and(|r| !r.is_zero())) {
         return None;
     }
     let on = |level: f64| {
         (0..n)
-            .filter(move |&i| (m.nodes[i][k] - level).abs() <= tol && !still(i))
+            .filter(|&i| (m.nodes[i][k] - level).abs() <= tol && !still(i))
             .collect::<Vec<_>>()
     };
-    let ends: Vec<usize> = (0..n).filter(|&i| at_end(i) && !still(i)).collect();
+    let ends: Vec<usize> = (0..n)
+        .filter(|&i| !still(i) && ((m.nodes[i][k] - lo).abs() <= tol || (m.nodes[i][k] - hi).abs() <= tol))
+        .collect();
     let least_other = (0..3)
         .filter(|a| *a != k)
-        .map(|a| extent(a).1 - extent(a).0)
+        .map(|a| extent(m, a).1 - extent(m, a).0)
         .fold(f64::MAX, f64::min);
-    // a plate whole (nothing held along k), or its half held on its mid-plane
     let plate = if held_k.is_empty() {
         Some(hi - lo)
     } else if held_k == on(lo) || held_k == on(hi) {
@@ -159,18 +175,11 @@ fn advice_along(m: &Model<Solid>, k: usize) -> Option<PlaneAdvice> {
     } else {
         None
     };
-    let (model, thickness) = match plate {
-        _ if held_k == ends => ("plane-strain", hi - lo),
-        Some(t) if t <= THIN * least_other => ("plane-stress", t),
-        _ => return None,
-    };
-    Some(PlaneAdvice {
-        axis: k,
-        model,
-        thickness,
-        dofs_3d: m.dof_count(),
-        dofs_plane: 2 * columns.len(),
-    })
+    match plate {
+        _ if held_k == ends => Some(("plane-strain", hi - lo)),
+        Some(t) if t <= THIN * least_other => Some(("plane-stress", t)),
+        _ => None,
+    }
 }
 
 /// Every rigid surface is the same along `k` and moves across it only.
