@@ -125,11 +125,11 @@ pub(super) fn unit_grading() -> [f64; 2] {
     [1.0, 1.0]
 }
 
-fn eight() -> usize {
+pub(super) fn eight() -> usize {
     8
 }
 
-fn half() -> f64 {
+pub(super) fn half() -> f64 {
     0.5
 }
 

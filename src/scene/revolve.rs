@@ -30,19 +30,11 @@ pub struct RevolutionSpec {
     #[serde(default)]
     pub build: bool,
     /// Cells around the quarter of a hollow section (default 8).
-    #[serde(default = "eight")]
+    #[serde(default = "super::mesh_spec::eight")]
     pub around: usize,
     /// The share of the radius a full section's core square takes (default 0.5).
-    #[serde(default = "half")]
+    #[serde(default = "super::mesh_spec::half")]
     pub core: f64,
-}
-
-fn eight() -> usize {
-    8
-}
-
-fn half() -> f64 {
-    0.5
 }
 
 fn err(src: &SceneSource, message: String, hint: &str) -> SceneError {
