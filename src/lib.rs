@@ -1,6 +1,6 @@
 //! # contrail
 //!
-//! A 2D finite-element solver for frictional contact in the covariant description
+//! A finite-element solver (plane, axisymmetric and 3D) for frictional contact in the covariant description
 //! (Konyukhov & Schweizerhof) with continuous transfer of history variables across master
 //! segments, that reports everything it does to observers (MCAP, rerun, CSV, JSON lines).
 //!

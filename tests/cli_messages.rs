@@ -122,6 +122,13 @@ fn check_advises_the_plane_or_axisymmetric_model_of_a_3d_scene() {
     ];
     let out = text(&contrail(&plate)).0;
     assert!(out.contains("a plane-stress model of the section would do"), "{out}");
+    // the chart's plate scene built in 3D: its own plane-stress model
+    let edge = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/plate-edge.toml");
+    let out = text(&contrail(&["check", s(&edge), "--set", "extrusion.build=true"])).0;
+    assert!(
+        out.contains("a plane-stress model of the section would do, with about 108 DOFs instead of 324"),
+        "{out}"
+    );
     // the axisymmetric Hertz scene built in 3D: the axisymmetric model would do
     let out = text(&contrail(&["check", "hertz-axisym", "--set", "revolution.build=true"])).0;
     assert!(out.contains("the quarter of a body of revolution about z"), "{out}");

@@ -361,7 +361,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
     let master = match (&c.master.body, &c.master.face, &c.master.rigid) {
         (Some(b), Some(face), None) => {
             let bi = body_index(cx, m, b)?;
-            let segments = m.bodies[bi].faces.get(face).cloned().ok_or_else(|| {
+            let segments = super::build_pairs::face_union(&m.bodies[bi].faces, face).ok_or_else(|| {
                 let known: Vec<&str> = m.bodies[bi].faces.keys().map(|s| s.as_str()).collect();
                 match &cx.mesh_files[bi] {
                     Some((file, interior)) => match interior.iter().find(|c| c.0 == *face) {

@@ -212,6 +212,21 @@ pub(super) fn implied_pairs(
     Ok(out)
 }
 
+/// The segments of a named face, or of a union of faces named `a+b` (the corner between
+/// them joins the chain: the top and the wall of a block as one master, as a rigid
+/// polyline would be). `None` when a part is not a face of the body.
+pub fn face_union(faces: &std::collections::BTreeMap<String, Vec<[usize; 2]>>, name: &str) -> Option<Vec<[usize; 2]>> {
+    let mut segments = Vec::new();
+    for part in name.split('+').map(str::trim) {
+        for s in faces.get(part)? {
+            if !segments.contains(s) {
+                segments.push(*s);
+            }
+        }
+    }
+    Some(segments)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -248,5 +263,17 @@ mod tests {
         expected.sort_unstable();
         got.sort_unstable();
         assert_eq!(got, expected);
+    }
+
+    #[test]
+    fn a_union_of_faces_is_one_chain_through_their_corner() {
+        let faces: std::collections::BTreeMap<String, Vec<[usize; 2]>> =
+            [("top".to_string(), vec![[3, 2]]), ("left".to_string(), vec![[2, 0]])].into();
+        let both = super::face_union(&faces, "top + left").unwrap();
+        assert_eq!(both, vec![[3, 2], [2, 0]]);
+        let (prev, next) = crate::model::chain_neighbours(&both);
+        assert_eq!((next[0], prev[1]), (Some(1), Some(0)));
+        assert_eq!(super::face_union(&faces, "top+top"), Some(vec![[3, 2]]));
+        assert!(super::face_union(&faces, "top+wall").is_none());
     }
 }

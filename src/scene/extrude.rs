@@ -128,7 +128,11 @@ fn extrude(src: &SceneSource, s: &SceneFile, e: &ExtrusionSpec) -> Result<SceneF
         f.components = f.components.iter().map(|&c| component(c)).collect();
     }
     for b in &s.bodies {
-        let nodes = if part.held_everywhere { "all" } else { "ymin" };
+        let nodes = if part.held_everywhere || held_still(s, &b.name) {
+            "all"
+        } else {
+            "ymin"
+        };
         out.fixes.push(FixSpec {
             name: Some(format!("extrusion-{}", b.name)),
             body: b.name.clone(),
@@ -156,6 +160,21 @@ fn extrude(src: &SceneSource, s: &SceneFile, e: &ExtrusionSpec) -> Result<SceneF
         m.force_scale *= part.measure / part.modelled;
     }
     Ok(out)
+}
+
+/// Whether every node of `body` is held still in the plane (fixes of `all` its nodes at zero
+/// in `x` and `y`): a body standing for a rigid one, which its extrusion holds still along
+/// `y` too — not a plate whose faces may move across its thickness.
+fn held_still(s: &SceneFile, body: &str) -> bool {
+    let still = |c: Component| {
+        s.fixes.iter().any(|f| {
+            f.body == body
+                && matches!(&f.nodes, NodeSelection::Named(n) if n == "all")
+                && matches!(f.value, RampSpec::Final(v) if v == 0.0)
+                && f.components.contains(&c)
+        })
+    };
+    still(Component::X) && still(Component::Y)
 }
 
 /// The modelled length and the 2D measure of the scene's bodies (all plane strain or all
@@ -413,5 +432,29 @@ mod tests {
         assert!(
             matches!(scaled(&RampSpec::Path(vec![[0.0, 1.0], [1.0, 2.0]]), 0.5), RampSpec::Path(p) if p == vec![[0.0, 0.5], [1.0, 1.0]])
         );
+    }
+
+    #[test]
+    fn a_body_held_still_in_the_plane_is_held_still_in_3d_and_a_plate_is_not() {
+        let scene = |fixes: &str| -> SceneFile {
+            toml::from_str(&format!(
+                "name = \"s\"\n[[body]]\nname = \"b\"\nmaterial = {{ model = \"neo-hookean\", young = 1.0, poisson = 0.3 }}\nmesh = {{ kind = \"rectangle\", origin = [0.0, 0.0], size = [1.0, 1.0], elements = [1, 1] }}\n{fixes}"
+            ))
+            .unwrap()
+        };
+        let fix = |nodes: &str, comps: &str, value: f64| {
+            format!("[[fix]]\nbody = \"b\"\nnodes = \"{nodes}\"\ncomponents = {comps}\nvalue = {value}\n")
+        };
+        let still = fix("all", "[\"x\", \"y\"]", 0.0);
+        assert!(held_still(&scene(&still), "b"));
+        let split = fix("all", "[\"x\"]", 0.0) + &fix("all", "[\"y\"]", 0.0);
+        assert!(held_still(&scene(&split), "b"));
+        for not in [
+            fix("bottom", "[\"x\", \"y\"]", 0.0),
+            fix("all", "[\"x\"]", 0.0),
+            fix("all", "[\"x\", \"y\"]", 0.1),
+        ] {
+            assert!(!held_still(&scene(&not), "b"), "{not}");
+        }
     }
 }

@@ -11,10 +11,11 @@ fn unstable_warning<S: Dim>(model: &Model<S>, unstable: &[crate::solver::element
     let safe = unstable
         .iter()
         .all(|e| S::holds_hourglass(&model.bodies[model.elements[e.element].body].kind));
+    let safe_kind = if S::D == 3 { "hex8-eas-safe" } else { "q4-eas-safe" };
     let remedy = if safe {
-        "the elements are already `q4-eas-safe`: they are deformed beyond what one element resolves (refine the mesh where they are)"
+        format!("the elements are already `{safe_kind}`: they are deformed beyond what one element resolves (refine the mesh where they are)")
     } else {
-        "the element kind `q4-eas-safe` (the default) does not hourglass in compression"
+        format!("the element kind `{safe_kind}` does not hourglass in compression")
     };
     format!(
         "{} elements have lost stability (their tangent is not positive definite in a deformation mode: an hourglass pattern; the answer may be wrong): elements {}{}; {remedy}",
