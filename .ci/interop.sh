@@ -10,7 +10,11 @@
 #    of a replay (`rerun rrd verify`);
 #  - meshio reads the ParaView series (.pvd + .vtu) of `run --out X.pvd` and of
 #    `export X.mcap --vtu DIR` and checks names, shapes and values against the run's MCAP and
-#    CSV (.ci/vtu_check.py), and the hexahedra of a 3D run against its MCAP (.ci/vtu_check_3d.py).
+#    CSV (.ci/vtu_check.py), and the hexahedra of a 3D run against its MCAP (.ci/vtu_check_3d.py);
+#  - ParaView itself (Debian's `paraview`, its pvpython) opens the series of a Gmsh hexahedral
+#    model with a contact surface and of the 3D Hertz run, and what it read is checked against
+#    their MCAP (.ci/paraview_read.py, .ci/paraview_check.py); with CI=true a ParaView that
+#    cannot be installed fails the check, elsewhere it is skipped with the reason.
 # The virtual environment is created on first use and reused (CONTRAIL_INTEROP_VENV).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -87,6 +91,11 @@ record hertz-3d --quiet --out "$TMP/h3.mcap" --out "$TMP/h3.pvd" --rerun-save "$
 "$BIN" inspect "$TMP/h3.mcap" >"$TMP/h3.inspect"
 grep -q "^3D contact" "$TMP/h3.inspect"
 "$BIN" replay "$TMP/h3.mcap" --rerun-save "$TMP/h3-replay.rrd"
+# a Gmsh hexahedral model with a contact surface (rigid plates on a physical surface), and a
+# rigid cylinder: their Foxglove scenes and ParaView series
+record tests/data/disc-3d.toml --quiet --set 'body.disc.mesh.file="disc-quarter-4.msh"' \
+    --out "$TMP/d3.mcap" --out "$TMP/d3.pvd"
+record tests/data/cylinder-slice-3d.toml --quiet --out "$TMP/cy3.mcap"
 
 echo "== interop: the published Foxglove schemas"
 # the package ships its JSON Schemas as a module (dist/jsonschema): written out as files
@@ -104,7 +113,8 @@ echo "== interop: mcap + jsonschema"
 "$VENV/bin/python" .ci/interop.py --schemas schemas --foxglove "$FOXGLOVE_DIR" \
     "$TMP/crossing.mcap" "$TMP/strip.mcap" "$TMP/failed.mcap" "$TMP/hd.mcap" \
     "$TMP/crossing-lz4.mcap" "$TMP/crossing-none.mcap" "$TMP/scenes.mcap" \
-    "$TMP/patch.mcap" "$TMP/c3.mcap" "$TMP/h3.mcap" recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
+    "$TMP/patch.mcap" "$TMP/c3.mcap" "$TMP/h3.mcap" "$TMP/d3.mcap" "$TMP/cy3.mcap" \
+    recordings/golden/format2/strip-channel.mcap "$TMP/converted.mcap"
 
 echo "== interop: the numpy snippet of docs/recording.md"
 # the python block after the marker line, run as it is on a recording
@@ -120,6 +130,24 @@ echo "== interop: meshio reads the VTU series"
 "$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/c3.pvd" "$TMP/c3.mcap"
 "$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/h3.pvd" "$TMP/h3.mcap"
 "$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/h3-exported/h3.pvd" "$TMP/h3.mcap"
+"$VENV/bin/python" .ci/vtu_check_3d.py "$TMP/d3.pvd" "$TMP/d3.mcap"
+
+echo "== interop: ParaView (pvpython) opens the 3D series"
+if ! command -v pvpython >/dev/null && command -v apt-get >/dev/null; then
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq paraview >"$TMP/paraview-apt.log" 2>&1 \
+        || { apt-get update -qq >/dev/null 2>&1 \
+            && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq paraview >"$TMP/paraview-apt.log" 2>&1; } || true
+fi
+if command -v pvpython >/dev/null; then
+    for run in d3 h3; do
+        pvpython .ci/paraview_read.py "$TMP/$run.pvd" "$TMP/$run-paraview.json"
+        "$VENV/bin/python" .ci/paraview_check.py "$TMP/$run-paraview.json" "$TMP/$run.mcap"
+    done
+elif [ "${CI:-}" = "true" ]; then
+    echo "ParaView could not be installed: $(tail -n 1 "$TMP/paraview-apt.log" 2>/dev/null)"; exit 1
+else
+    echo "skipped: no pvpython (apt-get install paraview)"
+fi
 
 echo "== interop: rerun rrd verify"
 for f in "$TMP/crossing.rrd" "$TMP/strip.rrd" "$TMP/strip-replay.rrd" "$TMP/c3.rrd" "$TMP/h3.rrd" "$TMP/h3-replay.rrd"; do

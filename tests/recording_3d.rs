@@ -24,6 +24,12 @@ const SLIDE_BASE: &str = include_str!("data/slide-3d-small.toml");
 
 /// Run into an in-memory MCAP and a `Memory`.
 fn record(origin: &str, text: &str) -> (Recording, Memory) {
+    let (bytes, mem) = record_bytes(origin, text);
+    (Recording::from_bytes(&bytes, origin).unwrap(), mem)
+}
+
+/// Run into an in-memory MCAP (its bytes) and a `Memory`.
+fn record_bytes(origin: &str, text: &str) -> (Vec<u8>, Memory) {
     let (p, info) = common::solid_problem(origin, text);
     let mut sink = McapSink::new(Cursor::new(Vec::new()), "memory", McapOptions::default()).unwrap();
     let mut mem = Memory::default();
@@ -32,8 +38,7 @@ fn record(origin: &str, text: &str) -> (Recording, Memory) {
     fan.sinks.push(&mut mem);
     run(&p, &info, &mut fan, &AtomicBool::new(false)).unwrap_or_else(|e| panic!("{origin}: {e}"));
     drop(fan);
-    let bytes = sink.into_inner().unwrap().into_inner();
-    (Recording::from_bytes(&bytes, origin).unwrap(), mem)
+    (sink.into_inner().unwrap().into_inner(), mem)
 }
 
 fn json(p: &SurfacePointRecord) -> String {
@@ -185,4 +190,73 @@ fn the_csv_counts_the_closed_3d_points_and_their_crossings() {
         closed_total > 0 && crossings_total > 0,
         "{closed_total} closed, {crossings_total} crossings"
     );
+}
+
+/// The JSON of every message on `topic`, in order.
+fn messages_on(bytes: &[u8], topic: &str) -> Vec<serde_json::Value> {
+    (mcap::MessageStream::new(bytes).unwrap())
+        .map(|m| m.unwrap())
+        .filter(|m| m.channel.topic == topic)
+        .map(|m| serde_json::from_slice(&m.data).unwrap())
+        .collect()
+}
+
+/// The entity `id` of a `foxglove.SceneUpdate`.
+fn entity<'a>(scene: &'a serde_json::Value, id: &str) -> &'a serde_json::Value {
+    (scene["entities"].as_array().unwrap().iter())
+        .find(|e| e["id"] == id)
+        .unwrap_or_else(|| panic!("no entity {id}"))
+}
+
+fn xyz(p: &serde_json::Value) -> [f64; 3] {
+    ["x", "y", "z"].map(|c| p[c].as_f64().unwrap())
+}
+
+#[test]
+fn a_3d_run_has_a_foxglove_scene_of_its_mesh_rigid_master_and_contact_points() {
+    let (bytes, mem) = record_bytes("hertz-3d", contrail::scene::builtin::find("hertz-3d").unwrap().text);
+    let r = Recording::from_bytes(&bytes, "hertz-3d").unwrap();
+    assert_eq!(messages_on(&bytes, "/foxglove/reference").len(), 1);
+    let scenes = messages_on(&bytes, "/foxglove/scene");
+    // the reference configuration, then every increment (4: `scene_every` auto)
+    assert_eq!(scenes.len(), 1 + r.increments.len());
+    let last = scenes.last().unwrap();
+    // the mesh: every node at its last position (single precision), the boundary's edges
+    let lines = &entity(last, "mesh")["lines"][0];
+    let points = lines["points"].as_array().unwrap();
+    let positions = &r.positions.last().expect("positions").nodes_3d;
+    assert_eq!(points.len(), positions.len());
+    for (p, x) in points.iter().zip(positions) {
+        let p = xyz(p);
+        assert!(
+            (0..3).all(|c| (p[c] - x[c]).abs() <= 1e-6 * (1.0 + x[c].abs())),
+            "{p:?} {x:?}"
+        );
+    }
+    let indices = lines["indices"].as_array().unwrap();
+    assert!(indices.len().is_multiple_of(2) && indices.iter().all(|i| (i.as_u64().unwrap() as usize) < points.len()));
+    // the rigid ball, moved down by its offset, drawn with its diameter
+    let ball = &entity(last, "rigid")["spheres"][0];
+    let centre = xyz(&ball["pose"]["position"]);
+    let offset = r.surface_offsets.values().last().unwrap()[0];
+    assert!((centre[2] - (1.0 + offset[2])).abs() < 1e-7, "{centre:?}");
+    assert_eq!(ball["size"]["x"].as_f64(), Some(2.0));
+    // one sphere per slave point within reach, where the record puts it
+    let within: Vec<_> = mem
+        .surface
+        .last()
+        .unwrap()
+        .iter()
+        .filter(|p| p.facet.is_some())
+        .collect();
+    let drawn = entity(last, "contact points")["spheres"].as_array().unwrap();
+    assert_eq!(drawn.len(), within.len());
+    for (d, p) in drawn.iter().zip(&within) {
+        let at = xyz(&d["pose"]["position"]);
+        assert!(
+            (0..3).all(|c| (at[c] - p.position[c]).abs() <= 1e-6),
+            "{at:?} {:?}",
+            p.position
+        );
+    }
 }

@@ -8,6 +8,7 @@
 use crate::record::interface::InterfaceRecord;
 use crate::record::mcap::arrays::{ContactColumns, PressureColumns};
 use crate::record::mcap::foxglove::{self, SceneEncoder, SceneView};
+use crate::record::mcap::foxglove3d::{SolidSceneEncoder, SolidSceneView};
 use crate::record::mcap::out::{McapOut, OutError};
 use crate::record::mcap::schemas;
 use crate::record::messages::{ModelRecord, PackedPositions, PositionsMessage};
@@ -32,6 +33,8 @@ pub struct Format3Writer {
     /// Indices of the points of one pair written in one message (reused).
     take: Vec<usize>,
     scene: SceneEncoder,
+    /// The scene of a 3D model (then `scene` draws nothing).
+    solid_scene: Option<SolidSceneEncoder>,
     scene_name: String,
 }
 
@@ -46,6 +49,7 @@ impl Format3Writer {
             pair_names: model.contacts.iter().map(|c| c.name.clone()).collect(),
             take: Vec::new(),
             scene: SceneEncoder::new(model),
+            solid_scene: (model.dim == Some(3)).then(|| SolidSceneEncoder::new(model)),
             scene_name: scene_name.to_string(),
         }
     }
@@ -118,9 +122,27 @@ impl Format3Writer {
 
     /// The reference mesh for Foxglove (once, at the start).
     pub fn reference<W: Write + Seek>(&mut self, out: &mut McapOut<W>) -> Result<(), OutError> {
-        let scene = &self.scene;
+        let (scene, solid) = (&self.scene, &self.solid_scene);
         out.put_with(schemas::FOXGLOVE_REFERENCE, |buf, now| {
-            scene.write_reference(buf, now);
+            match solid {
+                Some(s) => s.write_reference(buf, now),
+                None => scene.write_reference(buf, now),
+            }
+            Ok(())
+        })
+    }
+
+    /// The Foxglove scene of an increment of a 3D model (nothing for a plane model).
+    pub fn solid_scene<W: Write + Seek>(
+        &mut self,
+        out: &mut McapOut<W>,
+        view: &SolidSceneView,
+    ) -> Result<(), OutError> {
+        let Some(scene) = &self.solid_scene else {
+            return Ok(());
+        };
+        out.put_with(schemas::FOXGLOVE_SCENE, |buf, now| {
+            scene.write(buf, view, now);
             Ok(())
         })
     }

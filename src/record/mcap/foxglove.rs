@@ -17,7 +17,7 @@
 //! published ([`FOXGLOVE_LOG_SCHEMA`], [`FOXGLOVE_SCENE_SCHEMA`]).
 
 use crate::contact::law::ContactState;
-use crate::record::mcap::json_text::{colour, point3, raw, real32, string, time, uint};
+use crate::record::mcap::json_text::{colour, point3, raw, real32, string, time, uint, Xyz};
 use crate::record::messages::ModelRecord;
 use crate::record::rrd::style::{point_colour, MESH, REFERENCE, RIGID};
 use crate::record::rrd::view::{bbox, clip};
@@ -73,7 +73,8 @@ pub struct SceneEncoder {
     label_at: [f64; 2],
 }
 
-const POSE: &str = "{\"position\":{\"x\":0,\"y\":0,\"z\":0},\"orientation\":{\"x\":0,\"y\":0,\"z\":0,\"w\":1}}";
+pub(super) const POSE: &str =
+    "{\"position\":{\"x\":0,\"y\":0,\"z\":0},\"orientation\":{\"x\":0,\"y\":0,\"z\":0,\"w\":1}}";
 
 impl SceneEncoder {
     pub fn new(model: &ModelRecord) -> Self {
@@ -215,9 +216,9 @@ impl SceneEncoder {
 
 /// A contact point as the scene draws it.
 #[derive(Debug, Clone, Copy)]
-pub struct ScenePoint {
+pub struct ScenePoint<P = [f64; 2]> {
     pub pair: usize,
-    pub position: [f64; 2],
+    pub position: P,
     pub state: ContactState,
     /// It has a master segment within reach (points out of reach are not drawn, nor points
     /// without a finite position).
@@ -225,12 +226,25 @@ pub struct ScenePoint {
 }
 
 impl ScenePoint {
+    /// A point of a plane pair.
     pub fn of(p: &ContactPointRecord) -> Self {
         ScenePoint {
             pair: p.pair,
             position: p.position,
             state: p.state,
             in_reach: p.segment.is_some(),
+        }
+    }
+}
+
+impl ScenePoint<[f64; 3]> {
+    /// A slave point of a 3D pair.
+    pub fn of_surface(p: &crate::record::surface_contact::SurfacePointRecord) -> Self {
+        ScenePoint {
+            pair: p.pair,
+            position: p.position,
+            state: p.state,
+            in_reach: p.facet.is_some(),
         }
     }
 }
@@ -247,7 +261,7 @@ pub struct SceneView<'a> {
 }
 
 /// Append the start of a scene entity (up to its primitives).
-fn entity(out: &mut Vec<u8>, id: &str, time_ns: u64, metadata: &str) {
+pub(super) fn entity(out: &mut Vec<u8>, id: &str, time_ns: u64, metadata: &str) {
     raw(out, "{\"timestamp\":");
     time(out, time_ns);
     raw(out, ",\"frame_id\":\"");
@@ -262,7 +276,7 @@ fn entity(out: &mut Vec<u8>, id: &str, time_ns: u64, metadata: &str) {
 }
 
 /// Append a line list primitive through `nodes` with the given `"indices":[…]` text.
-fn line_list(out: &mut Vec<u8>, nodes: &[[f64; 2]], indices: &[u8], c: [u8; 4], thickness: f64) {
+pub(super) fn line_list<P: Xyz>(out: &mut Vec<u8>, nodes: &[P], indices: &[u8], c: [u8; 4], thickness: f64) {
     raw(out, "{\"type\":2,\"pose\":");
     raw(out, POSE);
     raw(out, ",\"thickness\":");
@@ -282,7 +296,7 @@ fn line_list(out: &mut Vec<u8>, nodes: &[[f64; 2]], indices: &[u8], c: [u8; 4], 
 }
 
 /// Append a sphere (after a comma if `out` already holds one).
-fn sphere(out: &mut Vec<u8>, at: [f64; 2], size: f64, c: [u8; 4]) {
+pub(super) fn sphere(out: &mut Vec<u8>, at: impl Xyz, size: f64, c: [u8; 4]) {
     if !out.is_empty() {
         raw(out, ",");
     }
@@ -303,7 +317,7 @@ fn sphere(out: &mut Vec<u8>, at: [f64; 2], size: f64, c: [u8; 4]) {
 }
 
 /// Close an entity: every primitive list (`lists` given, the others empty), `}`.
-fn primitives(out: &mut Vec<u8>, lists: &[(&str, &[u8])]) {
+pub(super) fn primitives(out: &mut Vec<u8>, lists: &[(&str, &[u8])]) {
     for name in [
         "arrows",
         "cubes",

@@ -32,13 +32,38 @@ pub fn real32(out: &mut Vec<u8>, x: f64) {
     }
 }
 
-/// Append `{"x":…,"y":…,"z":0}` (a point of the model's plane in 3D).
-pub fn point3(out: &mut Vec<u8>, p: [f64; 2]) {
+/// A point drawn in 3D: a point of the model's plane lies at `z = 0`.
+pub trait Xyz: Copy {
+    fn xyz(self) -> [f64; 3];
+}
+
+impl Xyz for [f64; 2] {
+    fn xyz(self) -> [f64; 3] {
+        [self[0], self[1], 0.0]
+    }
+}
+
+impl Xyz for [f64; 3] {
+    fn xyz(self) -> [f64; 3] {
+        self
+    }
+}
+
+/// Append `{"x":…,"y":…,"z":…}` (single precision).
+pub fn point3(out: &mut Vec<u8>, p: impl Xyz) {
+    let [x, y, z] = p.xyz();
     raw(out, "{\"x\":");
-    real32(out, p[0]);
+    real32(out, x);
     raw(out, ",\"y\":");
-    real32(out, p[1]);
-    raw(out, ",\"z\":0}");
+    real32(out, y);
+    raw(out, ",\"z\":");
+    if z == 0.0 {
+        // the plane's points as they always were written
+        raw(out, "0");
+    } else {
+        real32(out, z);
+    }
+    raw(out, "}");
 }
 
 /// Append `{"r":…,"g":…,"b":…,"a":…}` from 8-bit channels (Foxglove colours are 0–1).

@@ -4,6 +4,7 @@
 pub mod arrays;
 pub mod format3;
 pub mod foxglove;
+pub mod foxglove3d;
 pub mod json_text;
 pub mod out;
 pub mod schemas;

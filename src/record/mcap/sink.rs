@@ -15,6 +15,7 @@ use crate::record::interface::{interfaces, InterfaceLayout, InterfaceRecord};
 pub use crate::record::mcap::format3::node_of_label;
 use crate::record::mcap::format3::Format3Writer;
 use crate::record::mcap::foxglove::{ScenePoint, SceneView};
+use crate::record::mcap::foxglove3d::SolidSceneView;
 pub use crate::record::mcap::out::ChunkCompression;
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
@@ -122,7 +123,42 @@ struct Last {
     positions_written: bool,
     /// Its contact points as the scene draws them.
     contact: Vec<ScenePoint>,
+    /// A 3D model's: its pairs' slave points and rigid masters' offsets.
+    solid: SolidScene,
     scene_written: bool,
+}
+
+/// What the scene of a 3D model draws beside the node positions.
+#[derive(Default)]
+struct SolidScene {
+    contact: Vec<ScenePoint<[f64; 3]>>,
+    master_offsets: Vec<[f64; 3]>,
+}
+
+impl SolidScene {
+    fn of(model: &crate::model::Model<crate::model::Solid>, t: f64, points: &[SurfacePointRecord]) -> Self {
+        SolidScene {
+            contact: points.iter().map(ScenePoint::of_surface).collect(),
+            master_offsets: model.surface_contacts.iter().map(|p| master_offset(p, t)).collect(),
+        }
+    }
+
+    /// The Foxglove scene of the increment whose positions are `positions`.
+    fn write<W: Write + Seek>(
+        &self,
+        format: &mut Format3Writer,
+        out: &mut McapOut<W>,
+        positions: &PositionsMessage,
+    ) -> Result<(), OutError> {
+        let view = SolidSceneView {
+            increment: positions.increment,
+            t: positions.t,
+            nodes: &positions.nodes_3d,
+            master_offsets: &self.master_offsets,
+            contact: &self.contact,
+        };
+        format.solid_scene(out, &view)
+    }
 }
 
 /// Writes a recording to `W` (a file, or a `Cursor<Vec<u8>>` in tests).
@@ -219,7 +255,9 @@ impl<W: Write + Seek> McapSink<W> {
             format.positions(&mut self.out, &last.positions, &last.pressure)?;
             format.interfaces(&mut self.out, &last.interfaces)?;
         }
-        if !last.scene_written && self.scene_stride > 0 {
+        if !last.scene_written && self.scene_stride > 0 && !last.positions.nodes_3d.is_empty() {
+            last.solid.write(format, &mut self.out, &last.positions)?;
+        } else if !last.scene_written && self.scene_stride > 0 {
             let view = SceneView {
                 increment: last.positions.increment,
                 t: last.positions.t,
@@ -285,12 +323,9 @@ pub fn scene_attachment(info: &RunInfo, time_ns: u64) -> mcap::Attachment<'_> {
 
 impl<W: Write + Seek> Observer for McapSink<W> {
     fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
-        // the Foxglove scene draws 2D meshes only: none for a 3D model
-        self.scene_stride = match model.dim() {
-            2 => self.opts.scene.stride(info.settings.stepping.increments),
-            _ => 0,
-        };
+        self.scene_stride = self.opts.scene.stride(info.settings.stepping.increments);
         let record = ModelRecord::of(model, info.settings.stepping.end);
+        let model_ref = model;
         let model = model.plane();
         let metadata = metadata(info, model, &self.opts, self.scene_stride);
         let now = self.out.now();
@@ -302,6 +337,10 @@ impl<W: Write + Seek> Observer for McapSink<W> {
                     return Ok(());
                 }
                 format.reference(&mut self.out)?;
+                if let crate::model::ModelRef::Solid(solid) = model_ref {
+                    let start = PositionsMessage::of(0, 0.0, model_ref, &vec![0.0; 3 * solid.nodes.len()]);
+                    return SolidScene::of(solid, 0.0, &[]).write(&mut format, &mut self.out, &start);
+                }
                 let offsets: Vec<[f64; 2]> = model.rigid.iter().map(|r| r.offset(0.0)).collect();
                 let view = SceneView {
                     increment: 0,
@@ -414,7 +453,13 @@ impl<W: Write + Seek> McapSink<W> {
         if self.scene_stride > 0 {
             contact.extend(view.contact.iter().map(ScenePoint::of));
         }
-        if scene_now {
+        let solid = match view.model {
+            crate::model::ModelRef::Solid(m) if self.scene_stride > 0 => SolidScene::of(m, rec.t, view.surface),
+            _ => SolidScene::default(),
+        };
+        if scene_now && !positions.nodes_3d.is_empty() {
+            solid.write(format, &mut self.out, &positions)?;
+        } else if scene_now {
             let scene = SceneView {
                 increment: rec.increment,
                 t: rec.t,
@@ -430,6 +475,7 @@ impl<W: Write + Seek> McapSink<W> {
             interfaces,
             positions_written: positions_now,
             contact,
+            solid,
             scene_written: scene_now,
         });
         Ok(())
