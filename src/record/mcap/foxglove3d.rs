@@ -1,6 +1,6 @@
 //! The Foxglove scene of a 3D model (`/foxglove/reference`, `/foxglove/scene`, as
 //! [`super::foxglove`] writes them for a plane model): the edges of the mesh's boundary
-//! quadrilaterals (reference and deformed), each rigid master of a 3D pair moved by its
+//! quadrilaterals (reference and deformed; the line list holds the boundary nodes only), each rigid master of a 3D pair moved by its
 //! offset — a plane as a translucent square of 1.5 model sizes, a sphere as a sphere, a
 //! cylinder as a cylinder of that length — the contact slave points within reach as spheres
 //! coloured by state (the colours of the rerun view), and a label. z is up, as in the
@@ -32,7 +32,10 @@ pub struct SolidSceneView<'a> {
 /// Writes the `foxglove.SceneUpdate` messages of a 3D model.
 pub struct SolidSceneEncoder {
     reference: Vec<u8>,
-    /// `"indices":[…]` of the boundary edges.
+    /// The nodes drawn: those of the boundary (an interior node is on no drawn edge), in
+    /// node order; the line list's points are these nodes' positions.
+    shown: Vec<usize>,
+    /// `"indices":[…]` of the boundary edges, into `shown`.
     indices: Vec<u8>,
     /// Per 3D pair: its rigid master's shape (none for facets) and friction coefficient.
     pairs: Vec<(Option<RigidShapeInfo>, f64)>,
@@ -49,17 +52,24 @@ impl SolidSceneEncoder {
             .collect();
         edges.sort_unstable();
         edges.dedup();
+        let mut shown: Vec<usize> = edges.iter().flatten().copied().collect();
+        shown.sort_unstable();
+        shown.dedup();
         let mut indices = Vec::new();
         raw(&mut indices, "\"indices\":[");
-        let list: Vec<String> = edges.iter().flatten().map(|n| n.to_string()).collect();
+        let list: Vec<String> = (edges.iter().flatten())
+            .map(|n| shown.binary_search(n).expect("an edge's node is shown").to_string())
+            .collect();
         raw(&mut indices, &list.join(","));
         raw(&mut indices, "]");
         let mut reference = Vec::new();
-        line_list(&mut reference, &model.nodes_3d, &indices, REFERENCE, 1.0);
+        let at_rest: Vec<[f64; 3]> = shown.iter().map(|&n| model.nodes_3d[n]).collect();
+        line_list(&mut reference, &at_rest, &indices, REFERENCE, 1.0);
         let (lo, hi) = bounds(&model.nodes_3d);
         let size = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt().max(1e-9);
         SolidSceneEncoder {
             reference,
+            shown,
             indices,
             pairs: (model.surface_contacts.iter())
                 .map(|p| (p.rigid.clone(), p.mu))
@@ -87,7 +97,10 @@ impl SolidSceneEncoder {
         );
         entity(out, "mesh", time_ns, &meta);
         let mut lines = Vec::new();
-        line_list(&mut lines, view.nodes, &self.indices, MESH, 1.5);
+        let now: Vec<[f64; 3]> = (self.shown.iter())
+            .map(|&n| view.nodes.get(n).copied().unwrap_or([f64::NAN; 3]))
+            .collect();
+        line_list(&mut lines, &now, &self.indices, MESH, 1.5);
         primitives(out, &[("lines", &lines)]);
         raw(out, ",");
         entity(out, "rigid", time_ns, &meta);
