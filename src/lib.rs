@@ -24,6 +24,7 @@ pub mod settings;
 pub mod solver;
 pub mod study;
 pub mod sweep;
+pub mod team;
 pub mod threads;
 
 /// Version of the crate (recorded in every run).

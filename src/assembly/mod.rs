@@ -3,7 +3,6 @@
 
 pub mod pacing;
 pub mod skew;
-pub mod team;
 
 use crate::contact::system::{Config, ContactSystem};
 use crate::contact3d::system::SurfaceConfig;
@@ -15,6 +14,8 @@ use crate::linalg::factorization::LinearError;
 use crate::linalg::sparse::SparseMatrix;
 use crate::model::dim::Filled;
 use crate::model::{Dim, Model, Plane};
+use crate::team::Team;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Where the time of the Newton iterations went (accumulated over a run).
@@ -161,7 +162,7 @@ pub struct Assembler<S: Dim = Plane> {
     geometry: Vec<Result<S::Geometry, ElementError>>,
     /// The team that shares the element kernels with the calling thread (`None`: one
     /// thread), and the measured choice of whether it pays ([`pacing`]).
-    team: Option<team::Team>,
+    team: Option<Arc<Team>>,
     pub pacing: pacing::Pacing,
     /// Per-element outputs of one block of the team's path (allocated once).
     block: Vec<ElementOut<S>>,
@@ -298,8 +299,10 @@ impl<S: Dim> Assembler<S> {
     /// models of at least [`TEAM_ELEMENTS_FROM`] elements; 1 keeps them on the calling
     /// thread. Every choice gives the same bits (the scatter is sequential in element order).
     pub fn set_threads(&mut self, threads: usize, elements: usize) {
-        let team = (threads > 1 && elements >= TEAM_ELEMENTS_FROM).then(|| team::Team::new(threads));
-        self.team = team.filter(|t| t.threads() > 1);
+        let team = (threads > 1 && elements >= TEAM_ELEMENTS_FROM).then(|| Team::new(threads));
+        self.team = team.filter(|t| t.threads() > 1).map(Arc::new);
+        // the iterative solver's products and smoothing go to the same (sleeping) team
+        self.linear.set_team(self.team.clone());
         self.block = match self.team {
             Some(_) => vec![ElementOut::default(); elements.min(BLOCK)],
             None => Vec::new(),
@@ -309,7 +312,7 @@ impl<S: Dim> Assembler<S> {
 
     /// Threads that may evaluate the element kernels (the calling one included).
     pub fn threads(&self) -> usize {
-        self.team.as_ref().map_or(1, team::Team::threads)
+        self.team.as_ref().map_or(1, |t| t.threads())
     }
 
     /// Add one element's residual and tangent into the global arrays.

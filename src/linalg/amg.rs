@@ -21,13 +21,19 @@
 //! Coarsening stops at [`COARSEST`] unknowns (or when a level no longer shrinks), where a
 //! dense LU solves exactly. The V-cycle smooths with one forward Gauss–Seidel sweep before
 //! and one backward sweep after the coarse correction, so for a symmetric positive definite
-//! `A` it is a symmetric positive definite preconditioner (for conjugate gradients).
+//! `A` it is a symmetric positive definite preconditioner (for conjugate gradients). The
+//! finest level of a system of at least [`par_csr::BLOCK_SMOOTHING_FROM`] unknowns is swept by
+//! ℓ1 Gauss–Seidel on blocks of rows, its sweeps and residuals shared among the run's team
+//! ([`par_csr`]; the same bits on any number of threads).
 
 pub use super::aggregation::NearNullSpace;
 use super::aggregation::{aggregate, tentative};
 use super::csr::Csr;
+use super::par_csr;
+use crate::team::Team;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 use faer::{Mat, MatMut};
+use std::sync::Arc;
 
 /// Levels with at most this many unknowns are solved by a dense LU.
 pub const COARSEST: usize = 400;
@@ -47,6 +53,9 @@ const MAX_LEVELS: usize = 12;
 struct Level {
     a: Csr,
     diag: Vec<f64>,
+    /// The ℓ1 diagonal of a level smoothed by blocks ([`par_csr`]; the finest of a large
+    /// system), none where the sweep is sequential.
+    l1: Option<par_csr::BlockDiagonal>,
     /// Prolongator from the next coarser level, and its transpose.
     p: Csr,
     r: Csr,
@@ -64,6 +73,8 @@ struct Work {
 #[derive(Debug)]
 pub struct Hierarchy {
     levels: Vec<Level>,
+    /// The run's team, which shares the finest level's work (none: the calling thread).
+    team: Option<Arc<Team>>,
     coarse: PartialPivLu<f64>,
     coarse_n: usize,
     work: Vec<Work>,
@@ -94,7 +105,9 @@ impl Hierarchy {
             let p = af.matmul_then(&p0, |r, c, v| p0.get(r, c) - omega / fdiag[r] * v);
             let r = p.transpose();
             let coarse = r.matmul(&a.matmul(&p));
-            levels.push(Level { a, diag, p, r });
+            let l1 = (levels.is_empty() && a.nrows >= par_csr::BLOCK_SMOOTHING_FROM)
+                .then(|| par_csr::l1_diagonal(&a, &diag));
+            levels.push(Level { a, diag, l1, p, r });
             a = coarse;
             nns = coarse_nns;
         }
@@ -116,6 +129,7 @@ impl Hierarchy {
         });
         Hierarchy {
             levels,
+            team: None,
             coarse,
             coarse_n,
             work,
@@ -144,7 +158,15 @@ impl Hierarchy {
                 *dst = v;
             }
             l.diag = smoothing_diagonal(&l.a);
+            if l.l1.is_some() {
+                l.l1 = Some(par_csr::l1_diagonal(&l.a, &l.diag));
+            }
         }
+    }
+
+    /// Share the finest level's work with `team` (the same bits on any team).
+    pub fn set_team(&mut self, team: Option<Arc<Team>>) {
+        self.team = team;
     }
 
     /// One V-cycle: `x ≈ A⁻¹ b` (x is overwritten).
@@ -169,11 +191,12 @@ impl Hierarchy {
             return;
         }
         let lev = &self.levels[l];
+        let team = self.team.as_deref();
         {
             let w = &mut self.work[l];
             w.x.fill(0.0);
-            gauss_seidel(&lev.a, &lev.diag, &w.b, &mut w.x, false);
-            lev.a.residual(&w.x, &w.b, &mut w.res);
+            smooth(lev, &w.b, &mut w.x, false, team);
+            par_csr::residual(&lev.a, &w.x, &w.b, &mut w.res, team);
         }
         let (fine, coarse) = self.work.split_at_mut(l + 1);
         lev.r.mul(&fine[l].res, &mut coarse[0].b);
@@ -182,7 +205,15 @@ impl Hierarchy {
         let (fine, coarse) = self.work.split_at_mut(l + 1);
         let w = &mut fine[l];
         lev.p.mul_add(&coarse[0].x, &mut w.x);
-        gauss_seidel(&lev.a, &lev.diag, &w.b, &mut w.x, true);
+        smooth(lev, &w.b, &mut w.x, true, self.team.as_deref());
+    }
+}
+
+/// One smoothing sweep of a level: by blocks where it has an ℓ1 diagonal, else sequential.
+fn smooth(lev: &Level, b: &[f64], x: &mut [f64], backward: bool, team: Option<&Team>) {
+    match &lev.l1 {
+        Some(l1) => par_csr::block_gauss_seidel(&lev.a, l1, b, x, backward, team),
+        None => gauss_seidel(&lev.a, &lev.diag, b, x, backward),
     }
 }
 

@@ -23,7 +23,9 @@ use super::iterative::{IterativePlan, IterativeStats};
 use super::ldlt::{LdltPlan, LdltStats};
 use super::sparse::SparseMatrix;
 pub use crate::settings::LinearSolver;
+use crate::team::Team;
 use faer::Par;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Systems with at least this many unknowns would be factorised on the run's threads
@@ -67,6 +69,8 @@ pub struct LinearSolve {
     /// Threads the factorisations may use (the run's budget), and the size from which they do.
     threads: usize,
     parallel_from: usize,
+    /// The run's team (the assembler's), handed to the iterative solver.
+    team: Option<Arc<Team>>,
 }
 
 impl Default for LinearSolve {
@@ -92,6 +96,7 @@ impl LinearSolve {
             times: SolveTimes::default(),
             threads: 1,
             parallel_from: PARALLEL_FROM,
+            team: None,
         }
     }
 
@@ -100,6 +105,14 @@ impl LinearSolve {
     pub fn set_threads(&mut self, threads: usize, from: usize) {
         self.threads = threads.max(1);
         self.parallel_from = from;
+    }
+
+    /// Share the iterative solver's products and smoothing with the run's `team`.
+    pub fn set_team(&mut self, team: Option<Arc<Team>>) {
+        if let Some(p) = self.iterative.as_mut() {
+            p.set_team(team.clone());
+        }
+        self.team = team;
     }
 
     /// The parallelism of faer's factorisations of an `n`-unknown system.
@@ -199,7 +212,9 @@ impl LinearSolve {
         // only when asked for: on the large-model benchmark it is slower than the LU at
         // every size measured (docs/large-models.md)
         if let (LinearSolver::Iterative, Some(nodes)) = (self.solver, &self.nodes) {
-            self.iterative = Some(IterativePlan::new(a.n, &a.col_ptr, &a.row_idx, nodes));
+            let mut plan = IterativePlan::new(a.n, &a.col_ptr, &a.row_idx, nodes);
+            plan.set_team(self.team.clone());
+            self.iterative = Some(plan);
         }
     }
 

@@ -16,12 +16,13 @@
 use super::aggregation::MeshNodes;
 use super::amg::{Hierarchy, NearNullSpace};
 use super::csr::Csr;
+use crate::team::Team;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::matrix_free::bicgstab::{bicgstab, bicgstab_scratch, BicgParams};
 use faer::matrix_free::conjugate_gradient::{conjugate_gradient, conjugate_gradient_scratch, CgParams};
 use faer::matrix_free::{IdentityPrecond, InitialGuessStatus, LinOp, Precond};
 use faer::{Mat, MatMut, MatRef, Par};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Relative residual `‖b − A x‖ / ‖b‖` at which the Krylov solve stops: far below what a
@@ -77,6 +78,8 @@ pub struct IterativePlan {
     /// symmetry test and the multigrid need both).
     structurally_symmetric: bool,
     nodes: MeshNodes,
+    /// The run's team: it shares the products and the finest level's smoothing.
+    team: Option<Arc<Team>>,
     hierarchy: Option<Mutex<Hierarchy>>,
     build_time: Duration,
     iterations_after_build: usize,
@@ -90,9 +93,9 @@ pub struct IterativePlan {
     pub last_setup: Duration,
 }
 
-/// The tangent as a faer operator.
+/// The tangent as a faer operator (its product shared among the team, if any).
 #[derive(Debug)]
-struct Operator<'a>(&'a Csr);
+struct Operator<'a>(&'a Csr, Option<&'a Team>);
 
 /// A V-cycle as a faer preconditioner.
 #[derive(Debug)]
@@ -123,7 +126,7 @@ impl LinOp<f64> for Operator<'_> {
         self.0.ncols
     }
     fn apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, _: Par, _: &mut MemStack) {
-        self.0.mul(column(rhs), column_mut(out));
+        super::par_csr::mul(self.0, column(rhs), column_mut(out), self.1);
     }
     fn conj_apply(&self, out: MatMut<'_, f64>, rhs: MatRef<'_, f64>, par: Par, stack: &mut MemStack) {
         self.apply(out, rhs, par, stack);
@@ -194,7 +197,7 @@ impl IterativePlan {
             val: vec![0.0; row_idx.len()],
         };
         // the scratch of both methods depends on n only (the operators ask for none)
-        let (id, op) = (IdentityPrecond { dim: n }, Operator(&fine));
+        let (id, op) = (IdentityPrecond { dim: n }, Operator(&fine, None));
         let req = conjugate_gradient_scratch(id, &op, 1, Par::Seq).or(bicgstab_scratch(id, id, &op, 1, Par::Seq));
         IterativePlan {
             fine,
@@ -203,6 +206,7 @@ impl IterativePlan {
             mirror,
             diag_slot,
             nodes: nodes.clone(),
+            team: None,
             hierarchy: None,
             build_time: Duration::ZERO,
             iterations_after_build: 0,
@@ -213,6 +217,14 @@ impl IterativePlan {
             stats: IterativeStats::default(),
             last_setup: Duration::ZERO,
         }
+    }
+
+    /// Share the products and the finest level's smoothing with `team`.
+    pub fn set_team(&mut self, team: Option<Arc<Team>>) {
+        if let Some(h) = &self.hierarchy {
+            h.lock().unwrap_or_else(|e| e.into_inner()).set_team(team.clone());
+        }
+        self.team = team;
     }
 
     /// Whether the values are symmetric: `|a_rc − a_cr| ≤ 1e-10 √(|a_rr a_cc|)` everywhere.
@@ -287,7 +299,8 @@ impl IterativePlan {
         let started = Instant::now();
         let mut nns = NearNullSpace::rigid_body(self.fine.nrows, &self.nodes);
         self.stats.constrained_nodes = nns.constrain_stiff_directions(&self.fine, STIFF_NODE_FACTOR);
-        let h = Hierarchy::new(self.fine.clone(), nns);
+        let mut h = Hierarchy::new(self.fine.clone(), nns);
+        h.set_team(self.team.clone());
         let sizes = h.sizes();
         self.stats.levels = [0; 8];
         for (l, s) in self.stats.levels.iter_mut().zip(&sizes) {
@@ -322,7 +335,7 @@ impl IterativePlan {
             hierarchy: h,
             n: self.fine.nrows,
         };
-        let a = Operator(&self.fine);
+        let a = Operator(&self.fine, self.team.as_deref());
         if symmetric {
             // x = 0, but not `InitialGuessStatus::Zero`: faer 0.24's CG then leaves its first
             // residual uninitialised (and so does its BiCGStab)

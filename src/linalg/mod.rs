@@ -17,4 +17,5 @@ pub mod factorization;
 pub mod faer_lu;
 pub mod iterative;
 pub mod ldlt;
+pub mod par_csr;
 pub mod sparse;

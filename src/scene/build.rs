@@ -359,41 +359,7 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         _ => return Err(bad("invalid slave")),
     };
     let master = match (&c.master.body, &c.master.face, &c.master.rigid) {
-        (Some(b), Some(face), None) => {
-            let bi = body_index(cx, m, b)?;
-            let segments = super::build_pairs::face_union(&m.bodies[bi].faces, face).ok_or_else(|| {
-                let known: Vec<&str> = m.bodies[bi].faces.keys().map(|s| s.as_str()).collect();
-                match &cx.mesh_files[bi] {
-                    Some((file, interior)) => match interior.iter().find(|c| c.0 == *face) {
-                        Some((_, n)) => cx.err(
-                            face,
-                            format!("body `{b}`: physical curve `{face}` of {file} is not a face: {n} of its lines are not on the boundary"),
-                            &format!("a master face must lie on the body's boundary; its faces are: {}", known.join(", ")),
-                        ),
-                        None => cx.err(
-                            face,
-                            format!("body `{b}`: the mesh {file} has no physical curve `{face}` on its boundary"),
-                            &format!(
-                                "its faces are: {}; add `Physical Curve(\"{face}\") = {{…}};` to the .geo and mesh it again",
-                                known.join(", ")
-                            ),
-                        ),
-                    },
-                    None => cx.err(
-                        face,
-                        format!("body `{b}` has no face `{face}`"),
-                        &format!("faces are {}", known.join(", ")),
-                    ),
-                }
-            })?;
-            let (prev, next) = chain_neighbours(&segments);
-            Master::Face {
-                body: bi,
-                segments,
-                prev,
-                next,
-            }
-        }
+        (Some(b), Some(face), None) => face_master(cx, m, b, face)?,
         (None, None, Some(r)) => {
             let ri = rigid_index(cx, m, r)?;
             let RigidShape::Surface { pieces } = &m.rigid[ri].shape else {
@@ -422,6 +388,44 @@ fn contact_pair(cx: &Ctx, m: &Model, c: &ContactSpec, h: f64) -> Result<ContactP
         weights: Vec::new(),
         smoothing,
         enforcement: enforcement(cx, c)?,
+    })
+}
+
+/// The master face `face` of body `b` (faces joined by `+` are one chain), or why it is not
+/// one: no such face, or a Gmsh physical curve not on the boundary.
+fn face_master(cx: &Ctx, m: &Model, b: &str, face: &str) -> Result<Master, SceneError> {
+    let bi = body_index(cx, m, b)?;
+    let segments = super::build_pairs::face_union(&m.bodies[bi].faces, face).ok_or_else(|| {
+        let known: Vec<&str> = m.bodies[bi].faces.keys().map(|s| s.as_str()).collect();
+        match &cx.mesh_files[bi] {
+            Some((file, interior)) => match interior.iter().find(|c| c.0 == *face) {
+                Some((_, n)) => cx.err(
+                    face,
+                    format!("body `{b}`: physical curve `{face}` of {file} is not a face: {n} of its lines are not on the boundary"),
+                    &format!("a master face must lie on the body's boundary; its faces are: {}", known.join(", ")),
+                ),
+                None => cx.err(
+                    face,
+                    format!("body `{b}`: the mesh {file} has no physical curve `{face}` on its boundary"),
+                    &format!(
+                        "its faces are: {}; add `Physical Curve(\"{face}\") = {{…}};` to the .geo and mesh it again",
+                        known.join(", ")
+                    ),
+                ),
+            },
+            None => cx.err(
+                face,
+                format!("body `{b}` has no face `{face}`"),
+                &format!("faces are {}", known.join(", ")),
+            ),
+        }
+    })?;
+    let (prev, next) = chain_neighbours(&segments);
+    Ok(Master::Face {
+        body: bi,
+        segments,
+        prev,
+        next,
     })
 }
 

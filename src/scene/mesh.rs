@@ -1,7 +1,7 @@
 //! The mesh of one body: generated (`rectangle`) or read from a Gmsh file (`gmsh`, resolved
 //! relative to the scene file, or among the files shipped with a built-in scene).
 
-use super::types::{Bias, BodySpec, MeshSpec};
+use super::types::{Bias, BodySpec, GridAxes, MeshSpec, Rotation};
 use super::{builtin, locate, SceneError, SceneSource};
 use crate::model::gmsh::{read_gmsh, read_gmsh_hex, GmshError, GmshSolidMesh};
 use crate::model::mesh::{annulus_on, axis_coords, rotate, RectMesh};
@@ -137,28 +137,13 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             bias,
             focus,
             rotate: turn,
-        } => {
-            if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
-                return Err(invalid(
-                    format!("body `{}`: mesh needs positive size and ≥ 1 element each way", b.name),
-                    "fix [body.mesh]",
-                ));
-            }
-            let at = |k: usize| focus.map(|f| f[k] - origin[k]);
-            let xs = axis(size[0], elements[0], grading[0], bias[0], at(0));
-            let ys = axis(size[1], elements[1], grading[1], bias[1], at(1));
-            let mut m = RectMesh::on_grid(*origin, &xs, &ys);
-            if let Some(r) = turn {
-                rotate(&mut m.nodes, r.angle_deg, r.about.unwrap_or(*origin));
-            }
-            BodyMesh {
-                nodes: m.nodes,
-                quads: m.quads,
-                node_sets: m.node_sets,
-                faces: m.faces,
-                file: None,
-            }
-        }
+        } => rectangle_mesh(
+            b,
+            (origin, size),
+            (elements, grading, bias),
+            (*focus, turn.as_ref()),
+            &invalid,
+        )?,
         MeshSpec::Annulus {
             centre,
             radius,
@@ -167,33 +152,13 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
             grading,
             bias,
             focus,
-        } => {
-            let ok = elements[0] > 0
-                && elements[1] > 0
-                && radius[0] > 0.0
-                && radius[1] > radius[0]
-                && angle_deg[0] != angle_deg[1]
-                && (angle_deg[1] - angle_deg[0]).abs() <= 360.0;
-            if !ok {
-                return Err(invalid(
-                    format!("body `{}`: an annulus needs 0 < radius[0] < radius[1], two different angles less than a turn apart and ≥ 1 element each way", b.name),
-                    "fix [body.mesh]",
-                ));
-            }
-            // in units of a uniform element: the focus as a fraction of the sweep and thickness
-            let [na, nr] = elements.map(|e| e as f64);
-            let at = |k: usize, from: f64, to: f64| focus.map(|f| (f[k] - from) / (to - from) * [na, nr][k]);
-            let around = axis(na, elements[0], grading[0], bias[0], at(0, angle_deg[0], angle_deg[1]));
-            let through = axis(nr, elements[1], grading[1], bias[1], at(1, radius[0], radius[1]));
-            let m = annulus_on(*centre, *radius, *angle_deg, &around, &through);
-            BodyMesh {
-                nodes: m.nodes,
-                quads: m.quads,
-                node_sets: m.node_sets,
-                faces: m.faces,
-                file: None,
-            }
-        }
+        } => annulus_mesh(
+            b,
+            (centre, radius, angle_deg),
+            (elements, grading, bias),
+            *focus,
+            &invalid,
+        )?,
         MeshSpec::Gmsh { file } => gmsh(src, b, file)?,
         MeshSpec::Box { .. }
         | MeshSpec::Gmsh3d { .. }
@@ -218,4 +183,72 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
         ));
     }
     Ok(mesh)
+}
+
+/// Why a mesh is invalid, as the scene's error.
+type Invalid<'a> = dyn Fn(String, &str) -> SceneError + 'a;
+
+/// A rectangle's structured mesh (graded, biased, focused, rotated).
+fn rectangle_mesh(
+    b: &BodySpec,
+    (origin, size): (&[f64; 2], &[f64; 2]),
+    (elements, grading, bias): GridAxes,
+    (focus, turn): (Option<[f64; 2]>, Option<&Rotation>),
+    invalid: &Invalid,
+) -> Result<BodyMesh, SceneError> {
+    if elements[0] == 0 || elements[1] == 0 || size[0] <= 0.0 || size[1] <= 0.0 {
+        return Err(invalid(
+            format!("body `{}`: mesh needs positive size and ≥ 1 element each way", b.name),
+            "fix [body.mesh]",
+        ));
+    }
+    let at = |k: usize| focus.map(|f| f[k] - origin[k]);
+    let xs = axis(size[0], elements[0], grading[0], bias[0], at(0));
+    let ys = axis(size[1], elements[1], grading[1], bias[1], at(1));
+    let mut m = RectMesh::on_grid(*origin, &xs, &ys);
+    if let Some(r) = turn {
+        rotate(&mut m.nodes, r.angle_deg, r.about.unwrap_or(*origin));
+    }
+    Ok(BodyMesh {
+        nodes: m.nodes,
+        quads: m.quads,
+        node_sets: m.node_sets,
+        faces: m.faces,
+        file: None,
+    })
+}
+
+/// An annulus sector's structured mesh (graded, biased, focused).
+fn annulus_mesh(
+    b: &BodySpec,
+    (centre, radius, angle_deg): (&[f64; 2], &[f64; 2], &[f64; 2]),
+    (elements, grading, bias): GridAxes,
+    focus: Option<[f64; 2]>,
+    invalid: &Invalid,
+) -> Result<BodyMesh, SceneError> {
+    let ok = elements[0] > 0
+        && elements[1] > 0
+        && radius[0] > 0.0
+        && radius[1] > radius[0]
+        && angle_deg[0] != angle_deg[1]
+        && (angle_deg[1] - angle_deg[0]).abs() <= 360.0;
+    if !ok {
+        return Err(invalid(
+            format!("body `{}`: an annulus needs 0 < radius[0] < radius[1], two different angles less than a turn apart and ≥ 1 element each way", b.name),
+            "fix [body.mesh]",
+        ));
+    }
+    // in units of a uniform element: the focus as a fraction of the sweep and thickness
+    let [na, nr] = elements.map(|e| e as f64);
+    let at = |k: usize, from: f64, to: f64| focus.map(|f| (f[k] - from) / (to - from) * [na, nr][k]);
+    let around = axis(na, elements[0], grading[0], bias[0], at(0, angle_deg[0], angle_deg[1]));
+    let through = axis(nr, elements[1], grading[1], bias[1], at(1, radius[0], radius[1]));
+    let m = annulus_on(*centre, *radius, *angle_deg, &around, &through);
+    Ok(BodyMesh {
+        nodes: m.nodes,
+        quads: m.quads,
+        node_sets: m.node_sets,
+        faces: m.faces,
+        file: None,
+    })
 }

@@ -190,6 +190,9 @@ impl Bias {
     }
 }
 
+/// A structured mesh's two axes as written: `elements`, `grading`, `bias`.
+pub type GridAxes<'a> = (&'a [usize; 2], &'a [f64; 2], &'a [Bias; 2]);
+
 /// A rotation of a mesh by `angle_deg` (counter-clockwise) about `about` (default: the
 /// rectangle's `origin`).
 #[derive(Debug, Clone, Copy, Serialize, Deserialize, JsonSchema)]

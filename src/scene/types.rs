@@ -7,7 +7,7 @@ use crate::settings::{NewtonSettings, Stepping};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-pub use super::mesh_spec::{Bias, MeshSpec, Rotation};
+pub use super::mesh_spec::{Bias, GridAxes, MeshSpec, Rotation};
 pub use super::rigid_spec::{
     ArcSide, ArcSpec, CylinderSpec, MotionSpec, PieceSpec, PlaneSpec, PolygonSpec, SphereSpec,
 };

@@ -340,61 +340,16 @@ fn body(c: &Check, i: usize, b: &BodySpec, ext: &mut Extent) -> Result<f64, Scen
 fn limits(c: &Check, s: &SceneFile) -> R {
     let lim = &s.limits;
     // counted in f64: element counts may be anything up to u64::MAX
-    let dofs: f64 = s
-        .bodies
-        .iter()
-        .map(|b| match &b.mesh {
-            MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
-                2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
-            }
-            MeshSpec::Box { elements, .. } => 3.0 * elements.iter().map(|&n| n as f64 + 1.0).product::<f64>(),
-            MeshSpec::HemisphereShell { elements: [n, l], .. } => {
-                let n = *n as f64;
-                3.0 * (3.0 * n * n + 2.0 * n + 1.0) * (*l as f64 + 1.0)
-            }
-            MeshSpec::Revolved {
-                elements: [nr, nz],
-                around,
-                ..
-            } => {
-                let nr = *nr as f64 + 1.0;
-                3.0 * nr * nr.max(*around as f64 + 1.0) * (*nz as f64 + 1.0)
-            }
-            MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
-        })
-        .sum();
-    let worst = s.bodies.iter().enumerate().max_by(|a, b| {
-        let n = |b: &BodySpec| match &b.mesh {
-            MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
-                elements[0] as f64 * elements[1] as f64
-            }
-            MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
-            MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
-            MeshSpec::Revolved {
-                elements: [nr, nz],
-                around,
-                ..
-            } => (*nr as f64) * (*nr.max(around) as f64) * *nz as f64,
-            MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
-        };
-        n(a.1).total_cmp(&n(b.1))
-    });
+    let dofs: f64 = s.bodies.iter().map(|b| estimated_dofs(&b.mesh)).sum();
+    let worst =
+        (s.bodies.iter().enumerate()).max_by(|a, b| element_count(&a.1.mesh).total_cmp(&element_count(&b.1.mesh)));
     let at = worst.map_or(vec![P::K("limits")], |(i, _)| {
         vec![P::K("body"), P::I(i), P::K("mesh"), P::K("elements")]
     });
     let key = worst.map_or("limits".to_string(), |(_, b)| {
         format!("{}.mesh.elements", named("body", &b.name))
     });
-    let value = worst.map_or(String::new(), |(_, b)| match &b.mesh {
-        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
-            format!("[{}, {}]", elements[0], elements[1])
-        }
-        MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
-        MeshSpec::HemisphereShell { elements, .. } | MeshSpec::Revolved { elements, .. } => {
-            format!("[{}, {}]", elements[0], elements[1])
-        }
-        MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),
-    });
+    let value = worst.map_or(String::new(), |(_, b)| elements_text(&b.mesh));
     if dofs > lim.max_dofs as f64 {
         return Err(c.fail(
             &at,
@@ -421,6 +376,60 @@ fn limits(c: &Check, s: &SceneFile) -> R {
         ));
     }
     Ok(())
+}
+
+/// The DOFs a generated mesh will have, before it is built (0 for a mesh file).
+fn estimated_dofs(mesh: &MeshSpec) -> f64 {
+    match mesh {
+        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+            2.0 * (elements[0] as f64 + 1.0) * (elements[1] as f64 + 1.0)
+        }
+        MeshSpec::Box { elements, .. } => 3.0 * elements.iter().map(|&n| n as f64 + 1.0).product::<f64>(),
+        MeshSpec::HemisphereShell { elements: [n, l], .. } => {
+            let n = *n as f64;
+            3.0 * (3.0 * n * n + 2.0 * n + 1.0) * (*l as f64 + 1.0)
+        }
+        MeshSpec::Revolved {
+            elements: [nr, nz],
+            around,
+            ..
+        } => {
+            let nr = *nr as f64 + 1.0;
+            3.0 * nr * nr.max(*around as f64 + 1.0) * (*nz as f64 + 1.0)
+        }
+        MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
+    }
+}
+
+/// The elements a generated mesh will have (0 for a mesh file).
+fn element_count(mesh: &MeshSpec) -> f64 {
+    match mesh {
+        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+            elements[0] as f64 * elements[1] as f64
+        }
+        MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
+        MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
+        MeshSpec::Revolved {
+            elements: [nr, nz],
+            around,
+            ..
+        } => (*nr as f64) * (*nr.max(around) as f64) * *nz as f64,
+        MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
+    }
+}
+
+/// A mesh's `elements` as written (its file for a mesh file).
+fn elements_text(mesh: &MeshSpec) -> String {
+    match mesh {
+        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+            format!("[{}, {}]", elements[0], elements[1])
+        }
+        MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
+        MeshSpec::HemisphereShell { elements, .. } | MeshSpec::Revolved { elements, .. } => {
+            format!("[{}, {}]", elements[0], elements[1])
+        }
+        MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),
+    }
 }
 
 fn contact(c: &Check, i: usize, k: &ContactSpec, min_h: f64, extent: f64) -> R {

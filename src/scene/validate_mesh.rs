@@ -2,7 +2,7 @@
 //! rotation; each returns a lower bound of the mesh's smallest element edge.
 
 use super::{sub, Check, Extent, MAX_COORDINATE, P};
-use crate::scene::types::{Bias, MeshSpec, Rotation};
+use crate::scene::types::{Bias, GridAxes, MeshSpec, Rotation};
 use crate::scene::SceneError;
 
 /// Checks a body's mesh (`mesh`: its path, `key`: `body.NAME`) and returns a lower bound of
@@ -17,34 +17,15 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             bias,
             focus,
             rotate,
-        } => {
-            c.point(&sub(mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
-            for (k, s) in size.iter().enumerate() {
-                c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), *s)?;
-            }
-            let span = [0, 1].map(|k| [origin[k], origin[k] + size[k]]);
-            let f = axes(c, mesh, key, elements, grading, bias, *focus, span)?;
-            let h = (0..2)
-                .map(|k| size[k] / elements[k] as f64 * f[k])
-                .fold(f64::INFINITY, f64::min);
-            let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
-                .map(|[a, b]| [origin[0] + a * size[0], origin[1] + b * size[1]]);
-            let reach = match rotate {
-                Some(r) => rotation(c, mesh, key, r, *origin, &corners, ext)?,
-                None => corners.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())),
-            };
-            ext.add(reach);
-            if !ext.0.is_finite() || reach > MAX_COORDINATE {
-                return Err(c.fail(
-                    mesh,
-                    &format!("{key}.mesh"),
-                    format!("a corner {reach:e} from the origin"),
-                    &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
-                    "give a smaller mesh (or change the unit of length)",
-                ));
-            }
-            Ok(h)
-        }
+        } => rectangle(
+            c,
+            mesh,
+            key,
+            (origin, size),
+            (elements, grading, bias),
+            (*focus, rotate.as_ref()),
+            ext,
+        ),
         // checked when the file is read (`model::gmsh`): its size is not known here
         MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => Ok(f64::INFINITY),
         MeshSpec::Box {
@@ -89,6 +70,44 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             Ok(around * f[0].min(f[1]))
         }
     }
+}
+
+/// A rectangle's origin, size, grading and rotation; the smallest element edge.
+fn rectangle(
+    c: &Check,
+    mesh: &[P],
+    key: &str,
+    (origin, size): (&[f64; 2], &[f64; 2]),
+    (elements, grading, bias): GridAxes,
+    (focus, rotate): (Option<[f64; 2]>, Option<&Rotation>),
+    ext: &mut Extent,
+) -> Result<f64, SceneError> {
+    c.point(&sub(mesh, "origin"), &format!("{key}.mesh.origin"), *origin, ext)?;
+    for (k, s) in size.iter().enumerate() {
+        c.positive(&sub(mesh, "size"), &format!("{key}.mesh.size[{k}]"), *s)?;
+    }
+    let span = [0, 1].map(|k| [origin[k], origin[k] + size[k]]);
+    let f = axes(c, mesh, key, elements, grading, bias, focus, span)?;
+    let h = (0..2)
+        .map(|k| size[k] / elements[k] as f64 * f[k])
+        .fold(f64::INFINITY, f64::min);
+    let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+        .map(|[a, b]| [origin[0] + a * size[0], origin[1] + b * size[1]]);
+    let reach = match rotate {
+        Some(r) => rotation(c, mesh, key, r, *origin, &corners, ext)?,
+        None => corners.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs())),
+    };
+    ext.add(reach);
+    if !ext.0.is_finite() || reach > MAX_COORDINATE {
+        return Err(c.fail(
+            mesh,
+            &format!("{key}.mesh"),
+            format!("a corner {reach:e} from the origin"),
+            &format!("reaches more than {MAX_COORDINATE:e} from the origin"),
+            "give a smaller mesh (or change the unit of length)",
+        ));
+    }
+    Ok(h)
 }
 
 /// Element counts, grading, bias and focus of the two axes of a structured mesh spanning

@@ -1,6 +1,6 @@
-//! A team of worker threads for the element kernels, sized by the run's thread budget,
-//! whose idle workers *sleep* (a condition variable: no busy-waiting, no CPU taken from
-//! other processes between assemblies).
+//! A team of worker threads for the element kernels and the iterative solver's products and
+//! smoothing, sized by the run's thread budget, whose idle workers *sleep* (a condition
+//! variable: no busy-waiting, no CPU taken from other processes between jobs).
 //!
 //! One job at a time: [`Team::run`] posts `chunks` pieces of work, wakes the workers, and
 //! the calling thread claims pieces itself from the same atomic counter. Whoever is awake
@@ -74,6 +74,12 @@ impl Shared {
 pub struct Team {
     shared: Arc<Shared>,
     workers: Vec<JoinHandle<()>>,
+}
+
+impl std::fmt::Debug for Team {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Team").field("threads", &self.threads()).finish()
+    }
 }
 
 impl Team {
