@@ -67,6 +67,9 @@ struct Work {
     x: Vec<f64>,
     b: Vec<f64>,
     res: Vec<f64>,
+    /// The block smoother's copy of `x` from before a sweep (empty where the sweep is
+    /// sequential).
+    before: Vec<f64>,
 }
 
 /// A multigrid hierarchy and the coarsest level's factorisation.
@@ -120,12 +123,14 @@ impl Hierarchy {
                 x: vec![0.0; l.a.nrows],
                 b: vec![0.0; l.a.nrows],
                 res: vec![0.0; l.a.nrows],
+                before: Vec::new(),
             })
             .collect();
         work.push(Work {
             x: vec![0.0; coarse_n],
             b: vec![0.0; coarse_n],
             res: Vec::new(),
+            before: Vec::new(),
         });
         Hierarchy {
             levels,
@@ -195,7 +200,7 @@ impl Hierarchy {
         {
             let w = &mut self.work[l];
             w.x.fill(0.0);
-            smooth(lev, &w.b, &mut w.x, false, team);
+            smooth(lev, w, false, team);
             par_csr::residual(&lev.a, &w.x, &w.b, &mut w.res, team);
         }
         let (fine, coarse) = self.work.split_at_mut(l + 1);
@@ -205,15 +210,15 @@ impl Hierarchy {
         let (fine, coarse) = self.work.split_at_mut(l + 1);
         let w = &mut fine[l];
         lev.p.mul_add(&coarse[0].x, &mut w.x);
-        smooth(lev, &w.b, &mut w.x, true, self.team.as_deref());
+        smooth(lev, w, true, self.team.as_deref());
     }
 }
 
 /// One smoothing sweep of a level: by blocks where it has an ℓ1 diagonal, else sequential.
-fn smooth(lev: &Level, b: &[f64], x: &mut [f64], backward: bool, team: Option<&Team>) {
+fn smooth(lev: &Level, w: &mut Work, backward: bool, team: Option<&Team>) {
     match &lev.l1 {
-        Some(l1) => par_csr::block_gauss_seidel(&lev.a, l1, b, x, backward, team),
-        None => gauss_seidel(&lev.a, &lev.diag, b, x, backward),
+        Some(l1) => par_csr::block_gauss_seidel(&lev.a, l1, &w.b, &mut w.x, backward, (&mut w.before, team)),
+        None => gauss_seidel(&lev.a, &lev.diag, &w.b, &mut w.x, backward),
     }
 }
 

@@ -188,6 +188,17 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
 /// Why a mesh is invalid, as the scene's error.
 type Invalid<'a> = dyn Fn(String, &str) -> SceneError + 'a;
 
+/// The body mesh of a generated (not read) structured mesh.
+fn generated(m: RectMesh) -> BodyMesh {
+    BodyMesh {
+        nodes: m.nodes,
+        quads: m.quads,
+        node_sets: m.node_sets,
+        faces: m.faces,
+        file: None,
+    }
+}
+
 /// A rectangle's structured mesh (graded, biased, focused, rotated).
 fn rectangle_mesh(
     b: &BodySpec,
@@ -209,13 +220,7 @@ fn rectangle_mesh(
     if let Some(r) = turn {
         rotate(&mut m.nodes, r.angle_deg, r.about.unwrap_or(*origin));
     }
-    Ok(BodyMesh {
-        nodes: m.nodes,
-        quads: m.quads,
-        node_sets: m.node_sets,
-        faces: m.faces,
-        file: None,
-    })
+    Ok(generated(m))
 }
 
 /// An annulus sector's structured mesh (graded, biased, focused).
@@ -244,11 +249,5 @@ fn annulus_mesh(
     let around = axis(na, elements[0], grading[0], bias[0], at(0, angle_deg[0], angle_deg[1]));
     let through = axis(nr, elements[1], grading[1], bias[1], at(1, radius[0], radius[1]));
     let m = annulus_on(*centre, *radius, *angle_deg, &around, &through);
-    Ok(BodyMesh {
-        nodes: m.nodes,
-        quads: m.quads,
-        node_sets: m.node_sets,
-        faces: m.faces,
-        file: None,
-    })
+    Ok(generated(m))
 }

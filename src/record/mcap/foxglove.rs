@@ -158,18 +158,7 @@ impl SceneEncoder {
         // a label: increment and load level
         raw(out, ",");
         entity(out, "label");
-        let mut text = Vec::new();
-        raw(&mut text, "{\"pose\":{\"position\":");
-        point3(&mut text, self.label_at);
-        raw(
-            &mut text,
-            ",\"orientation\":{\"x\":0,\"y\":0,\"z\":0,\"w\":1}},\"billboard\":true,\"font_size\":14,\"scale_invariant\":true,\"color\":",
-        );
-        colour(&mut text, [230, 230, 230, 255]);
-        raw(&mut text, ",\"text\":");
-        string(&mut text, &format!("increment {}, t = {}", view.increment, view.t));
-        raw(&mut text, "}");
-        primitives(out, &[("texts", &text)]);
+        label(out, self.label_at, view.increment, view.t);
         raw(out, "]}");
     }
 
@@ -273,6 +262,22 @@ pub(super) fn entity(out: &mut Vec<u8>, id: &str, time_ns: u64, metadata: &str) 
         "\",\"lifetime\":{\"sec\":0,\"nsec\":0},\"frame_locked\":false,\"metadata\":",
     );
     raw(out, metadata);
+}
+
+/// Close the label entity: a text "increment N, t = …" at `at` (the entity is started).
+pub(super) fn label(out: &mut Vec<u8>, at: impl Xyz, increment: usize, t: f64) {
+    let mut text = Vec::new();
+    raw(&mut text, "{\"pose\":{\"position\":");
+    point3(&mut text, at);
+    raw(
+        &mut text,
+        ",\"orientation\":{\"x\":0,\"y\":0,\"z\":0,\"w\":1}},\"billboard\":true,\"font_size\":14,\"scale_invariant\":true,\"color\":",
+    );
+    colour(&mut text, [230, 230, 230, 255]);
+    raw(&mut text, ",\"text\":");
+    string(&mut text, &format!("increment {increment}, t = {t}"));
+    raw(&mut text, "}");
+    primitives(out, &[("texts", &text)]);
 }
 
 /// Append a line list primitive through `nodes` with the given `"indices":[…]` text.

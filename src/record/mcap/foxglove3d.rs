@@ -7,8 +7,8 @@
 //! model; coordinates in single precision (display data: the exact values are on
 //! `/positions` and `/surface_contact`).
 
-use super::foxglove::{entity, line_list, primitives, sphere, ScenePoint, POSE};
-use super::json_text::{colour, point3, raw, real32, string};
+use super::foxglove::{entity, label, line_list, primitives, sphere, ScenePoint, POSE};
+use super::json_text::{colour, point3, raw, real32};
 use crate::model::hex_boundary::boundary_quads;
 use crate::record::messages::ModelRecord;
 use crate::record::rrd::style::{point_colour, MESH, REFERENCE, RIGID};
@@ -123,18 +123,7 @@ impl SolidSceneEncoder {
         primitives(out, &[("spheres", &points)]);
         raw(out, ",");
         entity(out, "label", time_ns, &meta);
-        let mut text = Vec::new();
-        raw(&mut text, "{\"pose\":{\"position\":");
-        point3(&mut text, self.label_at);
-        raw(
-            &mut text,
-            ",\"orientation\":{\"x\":0,\"y\":0,\"z\":0,\"w\":1}},\"billboard\":true,\"font_size\":14,\"scale_invariant\":true,\"color\":",
-        );
-        colour(&mut text, [230, 230, 230, 255]);
-        raw(&mut text, ",\"text\":");
-        string(&mut text, &format!("increment {}, t = {}", view.increment, view.t));
-        raw(&mut text, "}");
-        primitives(out, &[("texts", &text)]);
+        label(out, self.label_at, view.increment, view.t);
         raw(out, "]}");
     }
 
