@@ -13,6 +13,7 @@ use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
 use crate::record::mcap::sink::SceneEvery;
 use crate::record::messages::CrossingMessageRef;
+use crate::record::packed_positions::{PositionsContent, Precision};
 use crate::record::pressure::PressureRecord;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
@@ -78,6 +79,13 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
     )?;
     let (stride, from_version) = write_header(r, &mut out, opts)?;
     let mut format = Format3Writer::new(&r.model, r.scene(), true);
+    // the positions as the recording kept them (every node or the boundary; the precision)
+    let single = r.metadata.get("positions_precision").map(String::as_str) == Some("single");
+    let kept = PositionsContent {
+        nodes: (!r.model.positions_nodes.is_empty()).then(|| r.model.positions_nodes.clone()),
+        precision: if single { Precision::Single } else { Precision::Double },
+    };
+    format.keep_positions(&r.model, kept);
     let mut scenes = 0;
     if stride > 0 {
         format.reference(&mut out)?;

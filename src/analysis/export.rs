@@ -5,7 +5,8 @@
 //! The recording holds the reference mesh, the current positions and the contact points, but
 //! not the materials: stress and strain need the model, which the caller rebuilds from the
 //! scene attached to the recording; without it (or if it does not match the recorded mesh)
-//! the series has the displacement and the contact points only.
+//! the series has the displacement and the contact points only. A recording of the boundary
+//! nodes only (`--positions-of surface`) is refused: the cells need every node.
 
 use super::recording::Recording;
 use crate::model::{Model, ModelRef, Solid};
@@ -44,6 +45,16 @@ pub fn matches_solid(model: &Model<Solid>, r: &Recording) -> bool {
 /// Write the series of `r` as `pvd` (and the directory beside it); `model` (if it
 /// [`matches`] or [`matches_solid`]) gives the element fields.
 pub fn export_vtu(r: &Recording, model: Option<ModelRef<'_>>, pvd: &Path) -> io::Result<ExportSummary> {
+    if !r.model.positions_nodes.is_empty() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!(
+                "the recording holds the positions of the {} boundary nodes only (`run --positions-of surface`): \
+                 a VTU series needs every node; record with `--positions-of all`, or view it with `contrail replay`",
+                r.model.positions_nodes.len()
+            ),
+        ));
+    }
     let series = VtuSeries::create(pvd)?;
     if r.model.dim() == 3 {
         let solid = match model {

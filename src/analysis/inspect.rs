@@ -67,6 +67,8 @@ pub struct InspectReport {
     pub last_log: Option<String>,
     pub message_counts: std::collections::BTreeMap<String, u64>,
     pub positions_every: String,
+    /// What `/positions` keeps beyond every node in double precision (empty: that).
+    pub positions_kept: String,
     pub chunks: usize,
 }
 
@@ -123,6 +125,7 @@ pub fn inspect(r: &Recording) -> InspectReport {
         last_log: r.logs.last().map(|l| l.message.clone()),
         message_counts: r.message_counts.clone(),
         positions_every: meta("positions_every"),
+        positions_kept: positions_kept(r),
         chunks: r.chunks,
     }
 }
@@ -379,6 +382,23 @@ fn render_crossings(s: &InspectReport, o: &mut String) {
     }
 }
 
+/// What `/positions` keeps, where it is less than every node in double precision.
+fn positions_kept(r: &Recording) -> String {
+    let mut kept = String::new();
+    if !r.model.positions_nodes.is_empty() {
+        let _ = write!(
+            kept,
+            ", the {} boundary nodes of {}",
+            r.model.positions_nodes.len(),
+            r.model.node_count()
+        );
+    }
+    if r.metadata.get("positions_precision").map(String::as_str) == Some("single") {
+        kept.push_str(", single precision");
+    }
+    kept
+}
+
 /// The table of messages per channel, and how often positions were written.
 fn render_channels(s: &InspectReport, o: &mut String) {
     let _ = writeln!(o, "\n  {:<16} {:>9}", "channel", "messages");
@@ -389,5 +409,5 @@ fn render_channels(s: &InspectReport, o: &mut String) {
         "1" => "every increment".to_string(),
         n => format!("every {n} increments"),
     };
-    let _ = writeln!(o, "  (positions {every})");
+    let _ = writeln!(o, "  (positions {every}{})", s.positions_kept);
 }

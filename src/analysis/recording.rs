@@ -481,7 +481,7 @@ impl Builder {
         }
         for p in std::mem::take(&mut self.packed_positions) {
             self.positions
-                .push(p.unpack().map_err(|e| (schemas::POSITIONS.to_string(), e))?);
+                .push(p.unpack_for(model).map_err(|e| (schemas::POSITIONS.to_string(), e))?);
         }
         for a in std::mem::take(&mut self.pressure_arrays) {
             self.pressure

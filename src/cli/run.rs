@@ -7,6 +7,7 @@ use super::{BadInput, RunFailed};
 use contrail::format::{compact_list, plain};
 use contrail::record::background::Background;
 use contrail::record::mcap::sink::{ChunkCompression, Iterations, McapOptions, McapSink, SceneEvery};
+use contrail::record::packed_positions::{PositionsOf, Precision};
 use contrail::record::rrd::sink::{self as rerun_sink, RerunSink};
 use contrail::record::text::csv::CsvSink;
 use contrail::record::text::jsonl::JsonlSink;
@@ -32,6 +33,16 @@ pub struct RunArgs {
     /// In an `.mcap` recording, write node positions every N-th increment (and the last).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     pub positions_every: u64,
+    /// In an `.mcap` recording, write the positions of every node (`all`) or of the nodes on
+    /// the boundary of the mesh (`surface`: what a view draws; a 3D model's interior nodes are
+    /// most of its nodes). Contact data is always written in full.
+    #[arg(long, value_enum, value_name = "WHICH", default_value_t = PositionsOf::All)]
+    pub positions_of: PositionsOf,
+    /// In an `.mcap` recording, write node positions as doubles, bit for bit (`double`), or
+    /// rounded to singles (`single`: a relative error of at most 6e-8, half the digits).
+    /// Contact data is always written in full.
+    #[arg(long, value_enum, value_name = "PRECISION", default_value_t = Precision::Double)]
+    pub positions_precision: Precision,
     /// Compression of the `.mcap` chunks: zstd (at `--compression-level`), lz4 or none.
     #[arg(long, value_enum, value_name = "KIND", default_value_t = ChunkCompression::Zstd)]
     pub compression: ChunkCompression,
@@ -122,6 +133,8 @@ fn sink(path: &Path, a: &RunArgs) -> anyhow::Result<Box<dyn Observer>> {
         Some("mcap") => {
             let opts = McapOptions {
                 positions_every: positions_every as usize,
+                positions_of: a.positions_of,
+                positions_precision: a.positions_precision,
                 compression: a.compression,
                 compression_level: a.compression_level,
                 thin_out_of_reach: !a.all_points,

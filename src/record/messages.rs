@@ -2,6 +2,7 @@
 //! node positions, and the per-increment envelopes of contact points and crossings. Their
 //! JSON Schemas sit in `schemas/` next to those of the solver records.
 
+pub use super::packed_positions::{pack_nodes, pack_values, PackedPositions};
 use super::real::{Real, Real2, Real2s};
 use super::surface_contact::SurfacePairInfo;
 use super::{ContactPointRecord, CrossingRecord};
@@ -84,7 +85,7 @@ pub struct PairInfo {
 }
 
 /// The static model, written once at the start (channel `/model`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct ModelRecord {
     pub name: String,
     pub description: String,
@@ -122,6 +123,10 @@ pub struct ModelRecord {
     /// their points.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub surface_contacts: Vec<SurfacePairInfo>,
+    /// The nodes `/positions` holds, in its order, where the recording keeps the boundary
+    /// of the mesh only (`--positions-of surface`; absent: every node).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub positions_nodes: Vec<usize>,
 }
 
 impl ModelRecord {
@@ -172,6 +177,7 @@ impl ModelRecord {
             surface_contacts: (model.surface_contacts.iter())
                 .map(|p| SurfacePairInfo::of(model, p))
                 .collect(),
+            positions_nodes: Vec::new(),
         }
     }
 
@@ -266,6 +272,7 @@ impl ModelRecord {
             nodes_3d: Vec::new(),
             hexahedra: Vec::new(),
             surface_contacts: Vec::new(),
+            positions_nodes: Vec::new(),
         }
     }
 
@@ -291,6 +298,39 @@ impl ModelRecord {
             }
         }
         out
+    }
+
+    /// The nodes on the boundary of the mesh, ascending: the ends of element edges met once
+    /// (2D), the corners of hexahedron faces met once (3D), and any node of no element.
+    pub fn surface_nodes(&self) -> Vec<usize> {
+        let total = self.nodes.len().max(self.nodes_3d.len());
+        let mut interior = vec![false; total];
+        let boundary: Vec<usize> = match self.dim() {
+            3 => {
+                self.hexahedra.iter().flatten().for_each(|&n| interior[n] = true);
+                crate::model::hex_boundary::boundary_quads(&self.hexahedra)
+                    .into_iter()
+                    .flatten()
+                    .collect()
+            }
+            _ => {
+                self.elements.iter().flatten().for_each(|&n| interior[n] = true);
+                let mut count = std::collections::HashMap::<[usize; 2], usize>::new();
+                for e in &self.elements {
+                    for k in 0..4 {
+                        let (a, b) = (e[k], e[(k + 1) % 4]);
+                        *count.entry([a.min(b), a.max(b)]).or_default() += 1;
+                    }
+                }
+                count
+                    .into_iter()
+                    .filter(|(_, n)| *n == 1)
+                    .flat_map(|(e, _)| e)
+                    .collect()
+            }
+        };
+        boundary.into_iter().for_each(|n| interior[n] = false);
+        (0..total).filter(|&n| !interior[n]).collect()
     }
 
     /// Same mesh and contact layout (what `diff` needs to align two recordings).
@@ -393,137 +433,6 @@ mod real_polylines {
     }
 }
 
-/// Current positions after a converged increment (channel `/positions`, format 3): the node
-/// coordinates packed as binary. They are the bulk of a recording of a large mesh; packed,
-/// they cost the writer about half the CPU of JSON numbers (formatting and compressing) and
-/// compress to fewer bytes (measured in `docs/recording.md`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-pub struct PackedPositions {
-    pub increment: usize,
-    #[serde(with = "Real")]
-    pub t: f64,
-    /// Current coordinates `X + u` of every node, bit for bit (NaN included): the values
-    /// x₀ y₀ x₁ y₁ … (2 per node) as IEEE 754 doubles, byte-shuffled — 8 planes, plane k
-    /// holding byte k (little-endian: k = 0 is the least significant) of every value — written
-    /// as lowercase hexadecimal (base16). In Python:
-    /// `numpy.frombuffer(bytes.fromhex(msg["nodes"]), numpy.uint8).reshape(8, -1).T.copy().view("<f8").reshape(-1, 2)`.
-    #[schemars(extend("contentEncoding" = "base16", "pattern" = "^([0-9a-f]{16})*$"))]
-    pub nodes: String,
-    /// Translation of each rigid body (same order as the model's `rigid`).
-    #[schemars(with = "Vec<Real2>")]
-    #[serde(with = "Real2s")]
-    pub rigid_offsets: Vec<[f64; 2]>,
-    /// Values per node in `nodes`: 3 for a 3D model (x₀ y₀ z₀ x₁ …; reshape to `(-1, 3)`);
-    /// absent for 2.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub dim: Option<usize>,
-}
-
-const HEX: &[u8; 16] = b"0123456789abcdef";
-
-/// Append the shuffled hexadecimal text of the coordinates `nodes` (see [`PackedPositions`]).
-pub fn pack_nodes(out: &mut Vec<u8>, nodes: &[[f64; 2]]) {
-    pack_values(out, nodes.as_flattened());
-}
-
-/// Append the shuffled hexadecimal text of the values `values` (see [`PackedPositions`]).
-pub fn pack_values(out: &mut Vec<u8>, values: &[f64]) {
-    let start = out.len();
-    out.resize(start + 16 * values.len(), 0);
-    let rows = out[start..].chunks_exact_mut(2 * values.len().max(1));
-    // one row per byte of the doubles, least significant first, written in place (no
-    // capacity check per byte: the writer thread's cost, docs/performance.md)
-    for (k, row) in rows.enumerate() {
-        for (digits, v) in row.chunks_exact_mut(2).zip(values) {
-            let b = (v.to_bits() >> (8 * k)) as u8;
-            digits[0] = HEX[(b >> 4) as usize];
-            digits[1] = HEX[(b & 15) as usize];
-        }
-    }
-}
-
-impl PackedPositions {
-    /// `p` packed.
-    pub fn pack(p: &PositionsMessage) -> Self {
-        let mut text = Vec::new();
-        let dim = (!p.nodes_3d.is_empty()).then_some(3);
-        match dim {
-            Some(_) => pack_values(&mut text, p.nodes_3d.as_flattened()),
-            None => pack_nodes(&mut text, &p.nodes),
-        }
-        PackedPositions {
-            increment: p.increment,
-            t: p.t,
-            nodes: String::from_utf8(text).unwrap_or_default(),
-            rigid_offsets: p.rigid_offsets.clone(),
-            dim,
-        }
-    }
-
-    /// Append the JSON of `p` packed (the text of `serde_json::to_vec(&PackedPositions::pack(p))`,
-    /// without the intermediate string).
-    pub fn write_json(out: &mut Vec<u8>, p: &PositionsMessage) -> serde_json::Result<()> {
-        use super::real::Item;
-        out.extend_from_slice(b"{\"increment\":");
-        serde_json::to_writer(&mut *out, &p.increment)?;
-        out.extend_from_slice(b",\"t\":");
-        serde_json::to_writer(&mut *out, &Item(p.t))?;
-        out.extend_from_slice(b",\"nodes\":\"");
-        match p.nodes_3d.is_empty() {
-            true => pack_nodes(out, &p.nodes),
-            false => pack_values(out, p.nodes_3d.as_flattened()),
-        }
-        out.extend_from_slice(b"\",\"rigid_offsets\":");
-        let mut ser = serde_json::Serializer::new(&mut *out);
-        Real2s::serialize(&p.rigid_offsets, &mut ser)?;
-        if !p.nodes_3d.is_empty() {
-            out.extend_from_slice(b",\"dim\":3");
-        }
-        out.push(b'}');
-        Ok(())
-    }
-
-    /// The positions unpacked (refused when the text is not the hexadecimal of whole nodes).
-    pub fn unpack(&self) -> Result<PositionsMessage, String> {
-        let err = |what: &str| format!("positions of increment {}: {what}", self.increment);
-        let text = self.nodes.as_bytes();
-        let dim = self.dim.unwrap_or(2);
-        if dim != 2 && dim != 3 {
-            return Err(err(&format!("dimension {dim}: neither 2 nor 3")));
-        }
-        if !text.len().is_multiple_of(16 * dim) {
-            return Err(err(&format!(
-                "{} hexadecimal digits, not a whole number of nodes ({} each)",
-                text.len(),
-                16 * dim
-            )));
-        }
-        let digit = |c: u8| match c {
-            b'0'..=b'9' => Ok(c - b'0'),
-            b'a'..=b'f' => Ok(c - b'a' + 10),
-            _ => Err(err("not lowercase hexadecimal")),
-        };
-        let n = text.len() / 16;
-        let mut bits = vec![0u64; n];
-        for (i, pair) in text.chunks_exact(2).enumerate() {
-            let b = (digit(pair[0])? << 4) | digit(pair[1])?;
-            bits[i % n] |= (b as u64) << (8 * (i / n));
-        }
-        let values = bits.iter().map(|b| f64::from_bits(*b));
-        let (nodes, nodes_3d) = match dim {
-            3 => (Vec::new(), values.collect::<Vec<f64>>().as_chunks::<3>().0.to_vec()),
-            _ => (values.collect::<Vec<f64>>().as_chunks::<2>().0.to_vec(), Vec::new()),
-        };
-        Ok(PositionsMessage {
-            increment: self.increment,
-            t: self.t,
-            nodes,
-            rigid_offsets: self.rigid_offsets.clone(),
-            nodes_3d,
-        })
-    }
-}
-
 impl PositionsMessage {
     /// The positions of a model of either dimension (3D: `nodes_3d`, `nodes` empty).
     pub fn of(increment: usize, t: f64, model: ModelRef<'_>, u: &[f64]) -> Self {
@@ -554,41 +463,5 @@ impl PositionsMessage {
             rigid_offsets: model.rigid.iter().map(|r| r.offset(t)).collect(),
             nodes_3d: Vec::new(),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn packed_positions_unpack_bit_for_bit() {
-        let p = PositionsMessage {
-            increment: 4,
-            t: 0.5,
-            nodes: vec![[1.0 / 3.0, -0.0], [f64::NAN, f64::INFINITY], [5e-324, -1e308]],
-            rigid_offsets: vec![[0.0, -0.25]],
-            nodes_3d: Vec::new(),
-        };
-        let text = serde_json::to_string(&PackedPositions::pack(&p)).unwrap();
-        let mut direct = Vec::new();
-        PackedPositions::write_json(&mut direct, &p).unwrap();
-        assert_eq!(String::from_utf8(direct).unwrap(), text);
-        let back: PackedPositions = serde_json::from_str(&text).unwrap();
-        let q = back.unpack().unwrap();
-        let bits = |m: &PositionsMessage| -> Vec<u64> { m.nodes.iter().flatten().map(|x| x.to_bits()).collect() };
-        assert_eq!(bits(&p), bits(&q));
-        assert_eq!((q.increment, q.t, q.rigid_offsets), (4, 0.5, vec![[0.0, -0.25]]));
-        let mut bad = back.clone();
-        bad.nodes.truncate(bad.nodes.len() - 4);
-        assert!(bad.unpack().unwrap_err().contains("whole number of nodes"));
-        bad.nodes = "0123456789ABCDEF0123456789abcdef".into();
-        assert!(bad.unpack().unwrap_err().contains("hexadecimal"));
-        // plane 7 (the most significant bytes) comes last: 1.0 is 3ff0000000000000
-        let one = PackedPositions::pack(&PositionsMessage {
-            nodes: vec![[1.0, 0.0]],
-            ..p.clone()
-        });
-        assert_eq!(one.nodes, format!("{}f000{}3f00", "00".repeat(12), ""));
     }
 }

@@ -8,6 +8,7 @@ pub mod interface;
 pub mod mcap;
 pub mod messages;
 mod observer;
+pub mod packed_positions;
 pub mod pressure;
 pub mod real;
 pub mod rrd;

@@ -392,13 +392,8 @@ mod tests {
                 eps_t: 1.0,
                 mu: 0.2,
             }],
-            monitor: None,
-            monitors: vec![],
             end: 1.0,
-            dim: None,
-            nodes_3d: vec![],
-            hexahedra: vec![],
-            surface_contacts: vec![],
+            ..ModelRecord::default()
         }
     }
 

@@ -12,6 +12,7 @@ use crate::record::mcap::foxglove3d::{SolidSceneEncoder, SolidSceneView};
 use crate::record::mcap::out::{McapOut, OutError};
 use crate::record::mcap::schemas;
 use crate::record::messages::{ModelRecord, PackedPositions, PositionsMessage};
+use crate::record::packed_positions::PositionsContent;
 use crate::record::pressure::PressureRecord;
 use crate::record::{ContactPointRecord, LogRecord};
 use std::io::{Seek, Write};
@@ -36,6 +37,8 @@ pub struct Format3Writer {
     /// The scene of a 3D model (then `scene` draws nothing).
     solid_scene: Option<SolidSceneEncoder>,
     scene_name: String,
+    /// What `/positions` keeps (every node in double precision unless the user chose).
+    positions: PositionsContent,
 }
 
 impl Format3Writer {
@@ -51,7 +54,19 @@ impl Format3Writer {
             scene: SceneEncoder::new(model),
             solid_scene: (model.dim == Some(3)).then(|| SolidSceneEncoder::new(model)),
             scene_name: scene_name.to_string(),
+            positions: PositionsContent::default(),
         }
+    }
+
+    /// Keep `content` of the positions. A slave node whose positions are not written bit for
+    /// bit is never left out of `/contact` (readers restore a left-out entry from them).
+    pub fn keep_positions(&mut self, model: &ModelRecord, content: PositionsContent) {
+        for (flags, c) in self.is_node.iter_mut().zip(&model.contacts) {
+            for (flag, s) in flags.iter_mut().zip(&c.slaves) {
+                *flag = node_of_label(s).is_some_and(|n| content.exact_for(n));
+            }
+        }
+        self.positions = content;
     }
 
     /// The `/contact` messages of increment `increment` (one per pair, its points in the
@@ -104,7 +119,7 @@ impl Format3Writer {
             out.put(schemas::PRESSURE, &PressureColumns(p))?;
         }
         out.put_with(schemas::POSITIONS, |buf, _| {
-            PackedPositions::write_json(buf, positions).map_err(OutError::from)
+            PackedPositions::write_json(buf, positions, &self.positions).map_err(OutError::from)
         })
     }
 

@@ -21,6 +21,7 @@ use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
 use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
+use crate::record::packed_positions::{PositionsContent, PositionsOf, Precision};
 use crate::record::pressure::{profiles, PressureLayout, PressureRecord};
 use crate::record::surface_contact::{master_offset, SurfacePointRecord};
 use crate::record::{IncrementRecord, IterationRecord, LogRecord, Observer, ObserverError, Outcome, RunInfo, StepView};
@@ -34,6 +35,10 @@ pub struct McapOptions {
     /// Write node positions and contact pressure profiles every N-th increment (and always the
     /// last one); 1 = every one.
     pub positions_every: usize,
+    /// Which nodes `/positions` holds (every node, or the boundary of the mesh).
+    pub positions_of: PositionsOf,
+    /// Precision of the coordinates in `/positions`.
+    pub positions_precision: Precision,
     /// Compression of the chunks.
     pub compression: ChunkCompression,
     /// zstd level (1 by default; 19 for small golden files; negative: zstd's fast levels).
@@ -104,6 +109,8 @@ impl Default for McapOptions {
     fn default() -> Self {
         McapOptions {
             positions_every: 1,
+            positions_of: PositionsOf::All,
+            positions_precision: Precision::Double,
             compression: ChunkCompression::default(),
             compression_level: 1,
             message_indexes: true,
@@ -297,6 +304,8 @@ pub fn metadata(info: &RunInfo, model: &Model, opts: &McapOptions, scene_stride:
     m.insert("dofs".into(), info.dofs.to_string());
     m.insert("free_dofs".into(), info.free_dofs.to_string());
     m.insert("positions_every".into(), opts.positions_every.max(1).to_string());
+    m.insert("positions_of".into(), opts.positions_of.name().into());
+    m.insert("positions_precision".into(), opts.positions_precision.name().into());
     m.insert("scene_every".into(), scene_stride.to_string());
     m.insert(
         "non_finite".into(),
@@ -324,12 +333,15 @@ pub fn scene_attachment(info: &RunInfo, time_ns: u64) -> mcap::Attachment<'_> {
 impl<W: Write + Seek> Observer for McapSink<W> {
     fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         self.scene_stride = self.opts.scene.stride(info.settings.stepping.increments);
-        let record = ModelRecord::of(model, info.settings.stepping.end);
+        let mut record = ModelRecord::of(model, info.settings.stepping.end);
+        let content = PositionsContent::of(&record, self.opts.positions_of, self.opts.positions_precision);
+        record.positions_nodes = content.nodes.clone().unwrap_or_default();
         let model_ref = model;
         let model = model.plane();
         let metadata = metadata(info, model, &self.opts, self.scene_stride);
         let now = self.out.now();
         let mut format = Format3Writer::new(&record, &info.scene, self.opts.thin_out_of_reach);
+        format.keep_positions(&record, content);
         let r = (self.out.register(metadata, &[scene_attachment(info, now)]))
             .and_then(|_| self.out.put(schemas::MODEL, &record))
             .and_then(|_| {

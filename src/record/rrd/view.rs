@@ -265,7 +265,10 @@ impl RerunView {
         let strips: Vec<Vec<[f32; 2]>> = self
             .edges
             .iter()
-            .filter_map(|ed| Some(vec![p32(*p.nodes.get(ed[0])?), p32(*p.nodes.get(ed[1])?)]))
+            .filter_map(|ed| Some([*p.nodes.get(ed[0])?, *p.nodes.get(ed[1])?]))
+            // an edge with an end not recorded (`--positions-of surface`) is not drawn
+            .filter(|ends| ends.iter().flatten().all(|x| x.is_finite()))
+            .map(|ends| ends.map(p32).to_vec())
             .collect();
         self.rec
             .log(

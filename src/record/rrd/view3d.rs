@@ -31,9 +31,12 @@ const FACES: [u8; 4] = [170, 195, 235, 255];
 
 /// The 3D part of a rerun view.
 pub struct SolidView {
-    /// Boundary quadrilaterals (outward) and their edges, each once.
-    quads: Vec<[usize; 4]>,
+    /// The edges of the boundary quadrilaterals, each once.
     edges: Vec<[usize; 2]>,
+    /// The boundary's nodes (the deformed mesh's vertices; a recording may hold positions
+    /// of these only) and its triangles over them.
+    shown: Vec<usize>,
+    triangles: Vec<[u32; 3]>,
     pairs: Vec<SurfacePairInfo>,
     /// Length of a friction arrow at the Coulomb limit; half-width of a rigid plane's square.
     arrow_len: f64,
@@ -51,9 +54,20 @@ impl SolidView {
         edges.sort_unstable();
         edges.dedup();
         let size = model_size(&model.nodes_3d);
+        let mut shown: Vec<usize> = quads.iter().flatten().copied().collect();
+        shown.sort_unstable();
+        shown.dedup();
+        let local = |n: usize| shown.binary_search(&n).unwrap_or_default() as u32;
+        let triangles = (quads.iter())
+            .flat_map(|q| {
+                let q = q.map(local);
+                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+            })
+            .collect();
         let view = SolidView {
-            quads,
             edges,
+            shown,
+            triangles,
             pairs: model.surface_contacts.clone(),
             arrow_len: ARROW_FRACTION * size,
             plane_half: 0.75 * size,
@@ -131,17 +145,14 @@ impl SolidView {
         if x.is_empty() {
             return Ok(());
         }
-        let vertices: Vec<[f32; 3]> = x.iter().map(|p| f32s(*p)).collect();
-        let triangles: Vec<[u32; 3]> = (self.quads.iter())
-            .flat_map(|q| {
-                let q = q.map(|i| i as u32);
-                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
-            })
-            .collect();
+        let vertices: Vec<[f32; 3]> = self.shown.iter().filter_map(|&n| Some(f32s(*x.get(n)?))).collect();
+        if vertices.len() != self.shown.len() {
+            return Ok(());
+        }
         rec.log(
             "scene/model/deformed",
             &rerun::Mesh3D::new(vertices)
-                .with_triangle_indices(triangles)
+                .with_triangle_indices(self.triangles.iter().copied())
                 .with_albedo_factor(FACES),
         )
         .map_err(e)?;

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# What a recording costs a 3D model of 1e5 unknowns, by what it keeps of the node positions:
+# the built-in hertz-3d as a plate (1 × 1 × 0.25, 56 × 56 × 10 hexahedra: 35 739 nodes,
+# 107 217 unknowns; its 3 249 top nodes are the contact slaves) run without a recording,
+# with a full one, with `--positions-of surface`, `--positions-every 10`, and both of those
+# with `--positions-precision single`. One run at a time; prints per case the wall time and
+# its ratio to the run without, and the file and its ratio to the full one.
+#
+#   bash benches/recording_scale_3d.sh                  # INCREMENTS=200 (hours on 2 cores)
+#   INCREMENTS=8 bash benches/recording_scale_3d.sh     # what docs/recording.md quotes
+#
+# Release build. Run it on a machine with nothing else running: the writer thread takes
+# its CPU from the solver's second thread.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$HOME/.cache/contrail-target}"
+cargo build --release --locked --quiet --bin contrail
+BIN="$CARGO_TARGET_DIR/release/contrail"
+INCREMENTS="${INCREMENTS:-200}"
+TMP="$(mktemp -d)"
+trap 'rm -rf "$TMP"' EXIT
+
+SCENE=(hertz-3d --set 'body.block.mesh.elements=[56,56,10]' --set 'body.block.mesh.size=[1.0,1.0,0.25]'
+  --set 'body.block.mesh.origin=[0.0,0.0,-0.25]' --set "stepping.increments=$INCREMENTS" --quiet)
+cases=(
+  "none|"
+  "full|--out REC"
+  "surface|--out REC --positions-of surface"
+  "every-10|--out REC --positions-every 10"
+  "surface+single|--out REC --positions-of surface --positions-precision single"
+  "every-10+surface|--out REC --positions-every 10 --positions-of surface"
+)
+echo "$(nproc) cores; load average before: $(cut -d' ' -f1-3 /proc/loadavg); $INCREMENTS increments"
+printf '%-18s %9s %7s %12s %7s\n' case wall ratio bytes ratio
+base="" full=""
+for c in "${cases[@]}"; do
+  name="${c%%|*}"
+  args="${c#*|}"
+  rec="$TMP/$name.mcap"
+  start=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  "$BIN" run "${SCENE[@]}" ${args//REC/$rec} >/dev/null
+  wall=$(echo "$(date +%s.%N) - $start" | bc)
+  [ -z "$base" ] && base=$wall
+  bytes=0
+  [ -f "$rec" ] && bytes=$(stat -c %s "$rec")
+  [ "$name" = full ] && full=$bytes
+  ratio_bytes="-"
+  [ -n "$full" ] && [ "$bytes" -gt 0 ] && ratio_bytes=$(echo "scale=3; $bytes / $full" | bc)
+  printf '%-18s %8.1fs %7.3f %12d %7s\n' "$name" "$wall" "$(echo "$wall / $base" | bc -l)" "$bytes" "$ratio_bytes"
+done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
