@@ -183,6 +183,25 @@ impl Browser {
         }
     }
 
+    /// A drag with the left button from the centre of `selector`'s element by `(dx, dy)`
+    /// pixels, in `steps` moves, as the mouse makes it.
+    pub fn drag(&mut self, selector: &str, dx: f64, dy: f64, steps: u32) {
+        let (x, y) = self.centre(selector);
+        let press = json!({ "type": "mousePressed", "x": x, "y": y, "button": "left", "buttons": 1, "clickCount": 1 });
+        self.call("Input.dispatchMouseEvent", press);
+        for k in 1..=steps {
+            let f = k as f64 / steps as f64;
+            self.call(
+                "Input.dispatchMouseEvent",
+                json!({ "type": "mouseMoved", "x": x + f * dx, "y": y + f * dy, "button": "left", "buttons": 1 }),
+            );
+        }
+        self.call(
+            "Input.dispatchMouseEvent",
+            json!({ "type": "mouseReleased", "x": x + dx, "y": y + dy, "button": "left", "buttons": 0, "clickCount": 1 }),
+        );
+    }
+
     /// Click into a text field, select what it holds and type `text` over it.
     pub fn type_into(&mut self, selector: &str, text: &str) {
         self.click(selector);

@@ -47,6 +47,7 @@ pub fn routes() -> Routes {
     .get("/", web::index)
     .get("/app.js", web::script)
     .get("/model.js", web::model_script)
+    .get("/model3d.js", web::model3d_script)
     .get("/style.css", web::style)
     .get("/api/health", health)
     .get("/api/scenes", scenes)

@@ -11,6 +11,7 @@ mod files;
 mod live;
 mod model;
 mod model_json;
+mod model_json3d;
 mod slurm;
 mod state;
 mod submit;

@@ -1,16 +1,17 @@
 //! The JSON of the web page's model view, made from a [`Recording`]: the reference mesh and
 //! the index of increments (`GET /api/runs/{id}/model`), and one increment's node positions
 //! and contact points (`GET /api/runs/{id}/model/{increment}`). Coordinates are flat arrays
-//! of `dim` numbers per point (single precision: they are for drawing), so that a 3D view
-//! reads the same layout with `dim = 3`.
+//! of `dim` numbers per point (single precision: they are for drawing); a 3D run's answer
+//! (`dim = 3`) is made by [`super::model_json3d`].
 
+use super::model_json3d as solid;
 use contrail::analysis::recording::Recording;
 use contrail::record::mcap::sink::node_of_label;
 use contrail::record::messages::PositionsMessage;
 use contrail::record::ContactPointRecord;
 use serde_json::{json, Value};
 
-/// Space dimension of the models recorded today.
+/// Space dimension of a plane model.
 const DIM: usize = 2;
 
 /// Points as a flat `[x0, y0, x1, y1, …]` list in single precision (NaN: null).
@@ -41,7 +42,7 @@ impl std::fmt::Display for FrameError {
 }
 
 /// The index of increments: number, load level, Newton iterations, cut-backs, contact points
-/// and the first monitor's displacement and force of each (parallel arrays).
+/// (2D and 3D) and the first monitor's displacement and force of each (parallel arrays).
 fn frames(rec: &Recording) -> Value {
     let incs = &rec.increments;
     let monitor = |f: fn(&contrail::record::MonitorRecord) -> f64| -> Vec<Option<f64>> {
@@ -53,7 +54,7 @@ fn frames(rec: &Recording) -> Value {
         "iterations": incs.iter().map(|i| i.iterations).collect::<Vec<_>>(),
         "cutbacks": incs.iter().map(|i| i.cutbacks).collect::<Vec<_>>(),
         "converged": incs.iter().map(|i| i.converged).collect::<Vec<_>>(),
-        "contact": incs.iter().map(|i| rec.contact_at(i.increment).len()).collect::<Vec<_>>(),
+        "contact": incs.iter().map(|i| rec.contact_at(i.increment).len() + rec.surface_at(i.increment).len()).collect::<Vec<_>>(),
         "displacement": monitor(|m| m.displacement),
         "force": monitor(|m| m.force),
     })
@@ -130,6 +131,7 @@ fn largest_forces(rec: &Recording) -> Value {
 /// forces.
 pub fn model(rec: &Recording, mesh: bool) -> Value {
     let m = &rec.model;
+    let plane = !solid::is_3d(rec);
     let mut v = json!({
         "dim": DIM,
         "name": m.name,
@@ -141,19 +143,24 @@ pub fn model(rec: &Recording, mesh: bool) -> Value {
         "frames": frames(rec),
         "positions_at": rec.positions.iter().map(|p| p.increment).collect::<Vec<_>>(),
         "positions_every": rec.metadata.get("positions_every").and_then(|s| s.parse::<usize>().ok()),
-        "bounds": bounds(rec),
-        "largest": largest_forces(rec),
+        "bounds": if plane { json!(bounds(rec)) } else { Value::Null },
+        "largest": if plane { largest_forces(rec) } else { Value::Null },
         "outcome": rec.outcome.as_ref().and_then(|o| serde_json::to_value(o).ok()),
     });
     if mesh {
-        v["nodes"] = json!(flat(m.nodes.iter().copied()));
-        v["elements"] = json!(m.elements.iter().flatten().collect::<Vec<_>>());
-        v["element_body"] = json!(m.element_body);
         v["bodies"] = json!(m
             .bodies
             .iter()
             .map(|b| json!({ "name": b.name, "element": b.element, "first_node": b.first_node, "node_count": b.node_count }))
             .collect::<Vec<_>>());
+    }
+    if !plane {
+        return solid::model(rec, mesh, v);
+    }
+    if mesh {
+        v["nodes"] = json!(flat(m.nodes.iter().copied()));
+        v["elements"] = json!(m.elements.iter().flatten().collect::<Vec<_>>());
+        v["element_body"] = json!(m.element_body);
         v["rigid"] = json!(m
             .rigid
             .iter()
@@ -226,14 +233,26 @@ pub fn frame(rec: &Recording, increment: usize) -> Result<Value, FrameError> {
             last: rec.increments.iter().map(|i| i.increment).max(),
         });
     }
-    let (shown, nodes, offsets) = positions_at(rec, increment);
-    let points = if increment == 0 {
-        &[][..]
+    let (dim, shown, nodes, offsets, contact) = if solid::is_3d(rec) {
+        let (shown, nodes) = solid::positions_at(rec, increment);
+        let points = if increment == 0 {
+            &[][..]
+        } else {
+            rec.surface_at(increment)
+        };
+        let offsets = solid::offsets_at(rec, increment);
+        (3, shown, nodes, offsets, solid::contact_arrays(points))
     } else {
-        rec.contact_at(increment)
+        let (shown, nodes, offsets) = positions_at(rec, increment);
+        let points = if increment == 0 {
+            &[][..]
+        } else {
+            rec.contact_at(increment)
+        };
+        (DIM, shown, flat(nodes), flat(offsets), contact_arrays(rec, points))
     };
     Ok(json!({
-        "dim": DIM,
+        "dim": dim,
         "increment": increment,
         "t": record.map_or(0.0, |r| r.t),
         "dt": record.map(|r| r.dt),
@@ -243,9 +262,9 @@ pub fn frame(rec: &Recording, increment: usize) -> Result<Value, FrameError> {
         "monitors": record.map(|r| json!(r.monitors)),
         "positions_increment": shown,
         "positions_exact": shown == increment,
-        "nodes": flat(nodes),
-        "rigid_offsets": flat(offsets),
-        "contact": contact_arrays(rec, points),
+        "nodes": nodes,
+        "rigid_offsets": offsets,
+        "contact": contact,
     }))
 }
 

@@ -96,16 +96,17 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
             MeshSpec::Rectangle { elements: e, .. } | MeshSpec::Annulus { elements: e, .. } => {
                 elements = elements.saturating_add(e[0].saturating_mul(e[1]));
             }
-            MeshSpec::Box { .. }
-            | MeshSpec::Gmsh3d { .. }
-            | MeshSpec::HemisphereShell { .. }
-            | MeshSpec::Revolved { .. } => {
+            MeshSpec::Box { elements: e, .. } => {
+                let hexahedra = e[0].saturating_mul(e[1]).saturating_mul(e[2]);
+                elements = elements.saturating_add(hexahedra);
+            }
+            MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. } | MeshSpec::Revolved { .. } => {
                 return Err(ApiError::bad(
                     format!(
-                        "body `{}` is 3D (a `box`, `revolved`, `hemisphere-shell` or `gmsh-3d` mesh)",
+                        "body `{}` is a 3D `revolved`, `hemisphere-shell` or `gmsh-3d` mesh",
                         b.name
                     ),
-                    "the service runs 2D scenes only for now: run 3D scenes with `contrail run`",
+                    "the service runs 2D scenes and 3D scenes of `box` meshes only for now: run the others with `contrail run`",
                 ))
             }
             MeshSpec::Gmsh { .. } if builtin && !sets.iter().any(|s| s.contains("mesh")) => {}

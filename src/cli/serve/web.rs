@@ -7,7 +7,7 @@ use axum::response::IntoResponse;
 
 /// The paths served without the token: the page's scripts and style sheet, the same for
 /// every service and holding no data (the page itself, `/`, and the API need the token).
-pub const PUBLIC: [&str; 3] = ["/app.js", "/model.js", "/style.css"];
+pub const PUBLIC: [&str; 4] = ["/app.js", "/model.js", "/model3d.js", "/style.css"];
 
 pub async fn index() -> impl IntoResponse {
     (
@@ -28,6 +28,14 @@ pub async fn model_script() -> impl IntoResponse {
     (
         [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
         include_str!("web/model.js"),
+    )
+}
+
+/// The model view's drawing of a 3D run (`Model3D`, called by model.js).
+pub async fn model3d_script() -> impl IntoResponse {
+    (
+        [(header::CONTENT_TYPE, "text/javascript; charset=utf-8")],
+        include_str!("web/model3d.js"),
     )
 }
 

@@ -259,7 +259,7 @@ fn sorted(e: [usize; 2]) -> [usize; 2] {
 }
 
 /// The diagonal of the bounding box of `x` (1 for no nodes).
-fn model_size(x: &[[f64; 3]]) -> f64 {
+pub fn model_size(x: &[[f64; 3]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in x {
         for c in 0..3 {
@@ -277,7 +277,7 @@ fn model_size(x: &[[f64; 3]]) -> f64 {
 
 /// The corners of the square of half-width `half` about `point` in the plane of `normal`,
 /// counter-clockwise seen from the side the normal points to.
-pub(crate) fn square(point: [f64; 3], normal: [f64; 3], half: f64) -> [[f64; 3]; 4] {
+pub fn square(point: [f64; 3], normal: [f64; 3], half: f64) -> [[f64; 3]; 4] {
     let len = normal.iter().map(|x| x * x).sum::<f64>().sqrt().max(f64::MIN_POSITIVE);
     let n = normal.map(|x| x / len);
     let helper = if n[0].abs() < 0.9 {

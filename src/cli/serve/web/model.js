@@ -3,14 +3,15 @@
 // forces their slaves receive (normal and tangential), at any increment, drawn on a canvas
 // from the service: GET /api/runs/ID/model (the reference mesh and the index of increments)
 // and GET /api/runs/ID/model/INCREMENT (that increment's node positions and contact points).
-// Coordinates come as flat arrays of `dim` numbers per point; this view draws dim = 2.
+// Coordinates come as flat arrays of `dim` numbers per point; this file draws dim = 2, and
+// model3d.js (Model3D) a 3D run's model (dim = 3) with the same controls and side panel.
 // app.js calls ModelView.show(slot, id, status, api) each time it draws a run's page; the
 // view (its canvas and the frames it fetched) survives those redraws.
 "use strict";
 
 const ModelView = (() => {
   const BODY_COLORS = ["#2f6fdb", "#d9822b", "#1f8a4c", "#a23bc2", "#c23b32", "#5b6b8a"];
-  const STATE_COLORS = { stick: "#1f8a4c", slip: "#d9822b", open: "#9aa3b2" };
+  const STATE_COLORS = { stick: "#1f8a4c", slip: "#d9822b", open: "#9aa3b2", closed: "#0096a0" };
   const NORMAL_COLOR = "#1d2330", TANGENT_COLOR = "#c23b32", RIGID_COLOR = "#4a5262";
   const FRAME_MS = 90, CACHE = 96, ARROW = 0.12;
   const MAGNIFY = [1, 2, 5, 10, 20, 50, 100, 1000];
@@ -45,6 +46,7 @@ const ModelView = (() => {
       playing: false, magnify: 1, arrows: true, requests: 0, frame: null, loadedAt: 0, follow: true };
     const $ = (s) => root.querySelector(s);
     v.canvas = $("#model-canvas");
+    Model3D.attach(v, () => redraw(v));
     $("#model-slider").addEventListener("input", (e) => { v.follow = false; pause(v); goTo(v, +e.target.value); });
     $("#model-play").addEventListener("click", () => (v.playing ? pause(v) : play(v)));
     $("#model-magnify").addEventListener("change", (e) => { v.magnify = +e.target.value; redraw(v); });
@@ -65,7 +67,8 @@ const ModelView = (() => {
     }
     v.requests++;
     v.model = v.model ? Object.assign({}, v.model, m, { nodes: v.model.nodes, elements: v.model.elements,
-      element_body: v.model.element_body, bodies: v.model.bodies, rigid: v.model.rigid, pairs: v.model.pairs }) : m;
+      element_body: v.model.element_body, bodies: v.model.bodies, rigid: v.model.rigid, pairs: v.model.pairs,
+      faces: v.model.faces, face_body: v.model.face_body, _edges: v.model._edges }) : m;
     const incs = m.frames.increment, last = incs.length ? incs[incs.length - 1] : 0;
     const slider = v.root.querySelector("#model-slider");
     slider.max = last;
@@ -128,9 +131,12 @@ const ModelView = (() => {
 
   function redraw(v) {
     if (!v.model || !v.frame || !v.root.isConnected) return;
-    const drawn = draw(v, v.model, v.frame);
+    const solid = v.model.dim === 3;
+    const drawn = solid ? Model3D.draw(v, v.model, v.frame, TOOLS) : draw(v, v.model, v.frame);
     Object.assign(v.canvas.dataset, { increment: v.frame.increment, positionsIncrement: v.frame.positions_increment,
-      elements: drawn.elements, contacts: drawn.contacts, contactsRecorded: v.frame.contact.count, requests: v.requests });
+      contacts: drawn.contacts, contactsRecorded: v.frame.contact.count, requests: v.requests },
+      solid ? { edges: drawn.edges, azimuth: v.turn.az.toFixed(3), elevation: v.turn.el.toFixed(3) } : { elements: drawn.elements });
+    v.canvas.style.cursor = solid ? "grab" : "";
     info(v, v.model, v.frame, drawn.contacts);
   }
 
@@ -289,8 +295,8 @@ const ModelView = (() => {
   }
 
   function info(v, m, f, drawn) {
-    const c = f.contact, by = { stick: 0, slip: 0, open: 0 };
-    c.state.forEach((s) => { by[s] = (by[s] || 0) + 1; });
+    const c = f.contact, by = { stick: 0, slip: 0, open: 0, closed: 0 };
+    c.state.forEach((s, i) => { const k = m.dim === 3 ? Model3D.stateOf(m, c, i) : s; by[k] = (by[k] || 0) + 1; });
     const n = m.frames.increment.length, mon = (f.monitors || [])[0];
     const positions = f.positions_exact ? "this increment's"
       : f.positions_increment === 0 ? "the reference configuration (no positions recorded before this increment)"
@@ -302,7 +308,7 @@ const ModelView = (() => {
       ...(mon ? { [`monitor ${mon.label}`]: `displacement ${num(mon.displacement)}, force ${num(mon.force)}` } : {}),
       "Newton iterations": f.iterations ?? "–",
       "cut-backs": f.cutbacks ?? "–",
-      "contact points": `${c.count}: ${by.stick} stick, ${by.slip} slip, ${by.open} open` +
+      "contact points": `${c.count}: ${by.stick} stick, ${by.slip} slip, ${by.closed ? `${by.closed} closed (frictionless), ` : ""}${by.open} open` +
         (drawn < c.count ? ` (${c.count - drawn} open out of reach, without a position: not drawn)` : ""),
       mesh: `<span id="model-positions" class="${f.positions_exact ? "" : "stale"}">${txt(positions)}</span>`,
     };
@@ -313,11 +319,14 @@ const ModelView = (() => {
     const m = v.model, swatch = (c, hollow) => `<i class="dot" style="${hollow ? `border-color:${c}` : `background:${c};border-color:${c}`}"></i>`;
     const bodies = m.bodies.map((b, k) => `<span><i class="swatch" style="background:${BODY_COLORS[k % BODY_COLORS.length]}"></i>${txt(b.name)}</span>`);
     const rigid = m.rigid.map((r) => `<span><i class="swatch" style="background:${RIGID_COLOR}"></i>${txt(r.name)} (rigid ${txt(r.kind)})</span>`);
+    const solid = m.dim === 3, closed = solid && m.pairs.some((p) => p.mu === 0);
+    const mesh = solid ? `${m.node_count} nodes, ${m.element_count} hexahedra, ${m.face_count} boundary faces` : `${m.node_count} nodes, ${m.element_count} elements`;
     v.root.querySelector("#model-legend").innerHTML = `<div>${bodies.concat(rigid).join("")}</div>
-      <div>${swatch(STATE_COLORS.stick)}stick ${swatch(STATE_COLORS.slip)}slip ${swatch(STATE_COLORS.open, true)}open</div>
+      <div>${swatch(STATE_COLORS.stick)}stick ${swatch(STATE_COLORS.slip)}slip ${closed ? `${swatch(STATE_COLORS.closed)}closed (frictionless) ` : ""}${swatch(STATE_COLORS.open, true)}open</div>
       <div><i class="swatch" style="background:${NORMAL_COLOR}"></i>normal force <i class="swatch" style="background:${TANGENT_COLOR}"></i>tangential traction
       <span class="muted">(on the slave; the run's largest force, ${num(m.largest.force)}, is ${100 * ARROW} % of the view)</span></div>
-      <div class="muted">${m.node_count} nodes, ${m.element_count} elements; mesh positions recorded at ${m.positions_at.length} of ${m.frames.increment.length} increments</div>`;
+      ${solid ? `<div class="muted">drag the picture to turn it (z up); double-click: the first view</div>` : ""}
+      <div class="muted">${mesh}; mesh positions recorded at ${m.positions_at.length} of ${m.frames.increment.length} increments</div>`;
   }
 
   // Show run `id`'s model in `slot` (an element of the page app.js has just drawn).
@@ -332,6 +341,9 @@ const ModelView = (() => {
     if (changed || (status === "running" && Date.now() - v.loadedAt > 1500)) load(v);
     else redraw(v);
   }
+
+  const TOOLS = { ARROW, STATE_COLORS, NORMAL_COLOR, TANGENT_COLOR, RIGID_COLOR, arrow, scaleBar,
+    bodyColor: (k) => BODY_COLORS[k % BODY_COLORS.length] };
 
   window.addEventListener("resize", () => { if (view) redraw(view); });
   return { show, state: () => view };
