@@ -7,7 +7,8 @@
 # its ratio to the run without, and the file and its ratio to the full one.
 #
 #   bash benches/recording_scale_3d.sh                  # INCREMENTS=200 (hours on 2 cores)
-#   INCREMENTS=8 bash benches/recording_scale_3d.sh     # what docs/recording.md quotes
+#   INCREMENTS=1 CASES="none full surface surface+single" bash benches/recording_scale_3d.sh
+#                                                       # what docs/recording.md quotes
 #
 # Release build. Run it on a machine with nothing else running: the writer thread takes
 # its CPU from the solver's second thread.
@@ -30,6 +31,13 @@ cases=(
   "surface+single|--out REC --positions-of surface --positions-precision single"
   "every-10+surface|--out REC --positions-every 10 --positions-of surface"
 )
+if [ -n "${CASES:-}" ]; then
+  picked=()
+  for c in "${cases[@]}"; do
+    for w in $CASES; do [ "${c%%|*}" = "$w" ] && picked+=("$c"); done
+  done
+  cases=("${picked[@]}")
+fi
 echo "$(nproc) cores; load average before: $(cut -d' ' -f1-3 /proc/loadavg); $INCREMENTS increments"
 printf '%-18s %9s %7s %12s %7s\n' case wall ratio bytes ratio
 base="" full=""
