@@ -109,12 +109,15 @@ pub struct NewtonSettings {
 #[serde(rename_all = "kebab-case")]
 pub enum LinearSolver {
     /// Banded LU after reverse Cuthill–McKee when the band is narrow; otherwise faer's sparse
-    /// `LDLᵀ` (AMD ordering) while the matrix is symmetric, faer's sparse LU when it is not.
+    /// `LDLᵀ` (minimum degree or nested dissection, whichever costs fewer flops) while the
+    /// matrix is symmetric — with the factor of an earlier tangent preconditioning conjugate
+    /// gradients while that costs less than a new factorisation — and faer's sparse LU when
+    /// it is not.
     #[default]
     Auto,
     /// Always faer's sparse LU (for comparisons).
     SparseLu,
-    /// faer's `LDLᵀ` or LU, never the banded LU (for comparisons).
+    /// faer's `LDLᵀ` or LU, never the banded LU, every tangent factorised (for comparisons).
     General,
     /// The smoothed-aggregation multigrid preconditioned Krylov solver, whatever the size;
     /// a solve it cannot converge falls back to faer's LU. Slower than the direct solvers

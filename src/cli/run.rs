@@ -329,7 +329,7 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
     if let Some(line) = iterative_line(&s.iterative) {
         row(o, "linear solver", line);
     }
-    if let Some(line) = ldlt_line(&s.ldlt, s.timings.factorizations) {
+    if let Some(line) = ldlt_line(&s.ldlt, &s.lagged, s.timings.factorizations) {
         row(o, "linear solver", line);
     }
     warning_rows(o, s);
@@ -465,15 +465,31 @@ fn iterative_line(it: &contrail::linalg::iterative::IterativeStats) -> Option<St
 }
 
 /// The symmetric factorisations' line, when any was planned.
-fn ldlt_line(l: &contrail::linalg::ldlt::LdltStats, factorizations: usize) -> Option<String> {
+fn ldlt_line(
+    l: &contrail::linalg::ldlt::LdltStats,
+    lagged: &contrail::linalg::lagged::LaggedStats,
+    factorizations: usize,
+) -> Option<String> {
     if l.plans == 0 {
         return None;
     }
+    let ordering = l.ordering.map_or("", |o| o.name());
+    let other = match l.flops.1 {
+        Some(f) => format!(", the other ordering {f:.2e}"),
+        None => String::new(),
+    };
     let mut line = format!(
-        "sparse LDLᵀ (AMD ordering; the tangent is symmetric) for {} of {} factorisations, \
-         {} values in the factor",
-        l.solves, factorizations, l.factor_nnz
+        "sparse LDLᵀ (the tangent is symmetric) for {} of {} factorisations, {ordering} ordering \
+         ({:.2e} flops per factorisation{other}), {} values in the factor",
+        l.solves, factorizations, l.flops.0, l.factor_nnz
     );
+    if lagged.solves + lagged.abandoned > 0 {
+        line.push_str(&format!(
+            "; {} solve(s) by conjugate gradients preconditioned with an earlier tangent's factor \
+             ({} iterations, at most {}), {} given up for a new factorisation",
+            lagged.solves, lagged.iterations, lagged.max_iterations, lagged.abandoned
+        ));
+    }
     if let Some(f) = l.last_failure {
         let why = match f {
             contrail::linalg::ldlt::LdltFailure::Unsymmetric => "the tangent became unsymmetric".to_string(),

@@ -20,6 +20,7 @@ use super::band_plan::BandPlan;
 use super::factorization::{Factorization, LinearError};
 use super::faer_lu::LuPlan;
 use super::iterative::{IterativePlan, IterativeStats};
+use super::lagged::{LaggedSolve, LaggedStats};
 use super::ldlt::{LdltPlan, LdltStats};
 use super::sparse::SparseMatrix;
 pub use crate::settings::LinearSolver;
@@ -59,6 +60,9 @@ pub struct LinearSolve {
     ldlt: Option<LdltPlan>,
     ldlt_decided: bool,
     ldlt_stats: LdltStats,
+    /// Solves with the `LDLᵀ` of an earlier tangent as preconditioner (`auto` only).
+    lagged: Option<LaggedSolve>,
+    lagged_stats: LaggedStats,
     lu: Option<LuPlan>,
     iterative: Option<IterativePlan>,
     /// Counts of the iterative plans of earlier patterns.
@@ -89,6 +93,8 @@ impl LinearSolve {
             ldlt: None,
             ldlt_decided: false,
             ldlt_stats: LdltStats::default(),
+            lagged: None,
+            lagged_stats: LaggedStats::default(),
             lu: None,
             iterative: None,
             iterative_stats: IterativeStats::default(),
@@ -167,6 +173,15 @@ impl LinearSolve {
         s
     }
 
+    /// Counts of the solves with an earlier tangent's factor so far.
+    pub fn lagged_stats(&self) -> LaggedStats {
+        let mut s = self.lagged_stats;
+        if let Some(l) = &self.lagged {
+            add_lagged(&mut s, &l.stats);
+        }
+        s
+    }
+
     /// Counts of the symmetric (`LDLᵀ`) factorisations so far.
     pub fn ldlt_stats(&self) -> LdltStats {
         self.ldlt_stats
@@ -225,6 +240,9 @@ impl LinearSolve {
         self.lu = None;
         self.ldlt = None;
         self.ldlt_decided = false;
+        if let Some(l) = self.lagged.take() {
+            add_lagged(&mut self.lagged_stats, &l.stats);
+        }
         if self.iterative.is_some() {
             self.iterative_stats = self.iterative_stats();
             self.iterative = None;
@@ -241,19 +259,32 @@ impl LinearSolve {
         if !self.ldlt_decided {
             self.ldlt_decided = true;
             let started = Instant::now();
-            self.ldlt = LdltPlan::new(a.n, &a.col_ptr, &a.row_idx, &a.values, par);
+            self.ldlt = LdltPlan::new(a.n, &a.col_ptr, &a.row_idx, &a.values, self.nodes.as_ref(), par);
             self.times.factor_time += started.elapsed();
             if let Some(plan) = &self.ldlt {
                 self.symbolic_factorizations += 1;
                 self.ldlt_stats.plans += 1;
                 self.ldlt_stats.factor_nnz = plan.factor_nnz();
+                self.ldlt_stats.ordering = Some(plan.ordering);
+                self.ldlt_stats.flops = plan.flops;
             }
         }
         let Some(plan) = self.ldlt.as_mut() else {
             return false;
         };
+        let lagged =
+            (self.lagged).get_or_insert_with(|| LaggedSolve::new(a.n, plan.flops.0, plan.factor_nnz(), a.nnz()));
+        if self.solver == LinearSolver::Auto && plan.factored() && lagged.worth_trying() {
+            let started = Instant::now();
+            let solved = lagged.solve(plan, a, b, par);
+            self.times.solve_time += started.elapsed();
+            if solved {
+                return true;
+            }
+        }
         match factorize_and_solve(plan, a, b, par, &mut self.times) {
             Ok(()) => {
+                lagged.factorized();
                 self.ldlt_stats.solves += 1;
                 true
             }
@@ -279,6 +310,13 @@ impl LinearSolve {
         let lu = self.lu.as_mut().expect("set above");
         factorize_and_solve(lu, a, b, par, &mut self.times)
     }
+}
+
+fn add_lagged(sum: &mut LaggedStats, s: &LaggedStats) {
+    sum.solves += s.solves;
+    sum.iterations += s.iterations;
+    sum.max_iterations = sum.max_iterations.max(s.max_iterations);
+    sum.abandoned += s.abandoned;
 }
 
 /// Factorise and solve with one plan, timing both steps.

@@ -75,6 +75,8 @@ pub struct RunSummary {
     pub iterative: crate::linalg::iterative::IterativeStats,
     /// Counts of the symmetric (`LDLᵀ`) factorisations (all zero when none was made).
     pub ldlt: crate::linalg::ldlt::LdltStats,
+    /// Counts of the solves preconditioned by an earlier tangent's `LDLᵀ`.
+    pub lagged: crate::linalg::lagged::LaggedStats,
     /// Elements that lost stability at some converged increment (see
     /// [`super::element_check`]): the first such increment, the most at one increment and
     /// the worst element seen.

@@ -389,6 +389,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
         summary.timings = self.asm.timings();
         summary.iterative = linear.iterative_stats();
         summary.ldlt = linear.ldlt_stats();
+        summary.lagged = linear.lagged_stats();
         summary.recording_s = self.recording.as_secs_f64();
         summary
     }
