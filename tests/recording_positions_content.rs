@@ -74,9 +74,6 @@ fn the_strip_keeps_its_boundary_in_single_precision_and_every_contact_point_bit_
         contrail::solver::run(&problem, &info, o, &AtomicBool::new(false)).unwrap();
     };
     let (full, _) = record(McapOptions::default(), go);
-    let go = |o: &mut dyn Observer| {
-        contrail::solver::run(&problem, &info, o, &AtomicBool::new(false)).unwrap();
-    };
     let (kept, mem) = record(options(PositionsOf::Surface, Precision::Single), go);
     let full = Recording::from_bytes(&full, "full.mcap").unwrap();
     let kept_len = kept.len();
@@ -119,9 +116,6 @@ fn a_3d_run_keeps_its_surface_bit_for_bit_and_its_contact_in_full() {
         contrail::solver::run(&problem, &info, o, &AtomicBool::new(false)).unwrap();
     };
     let (full_bytes, _) = record(McapOptions::default(), go);
-    let go = |o: &mut dyn Observer| {
-        contrail::solver::run(&problem, &info, o, &AtomicBool::new(false)).unwrap();
-    };
     let (kept_bytes, mem) = record(options(PositionsOf::Surface, Precision::Double), go);
     let full = Recording::from_bytes(&full_bytes, "full.mcap").unwrap();
     let r = Recording::from_bytes(&kept_bytes, "kept.mcap").unwrap();

@@ -82,3 +82,23 @@ def line(code, m, extra):
     """One `key=value` line for the bench script."""
     fields = {"code": code, **extra, **{k: f"{v:.7g}" if isinstance(v, float) else v for k, v in m.items()}}
     return " ".join(f"{k}={v}" for k, v in fields.items())
+
+
+def report(code, label, m, extra, note=""):
+    """Print the bench script's line (stdout) and a readable summary (stderr) of one run;
+    exit non-zero when F, a or p0 is not finite."""
+    import sys
+
+    print(line(code, m, extra))
+    print(
+        f"{code} {label}: F = {m['F']:.6f} ({note}Hertz for d: {m['F_hertz']:.6f}, {100 * m['F_err']:+.2f} %), "
+        f"a = {m['a']:.5f} (Hertz {m['a_hertz']:.5f}, {100 * m['a_err']:+.2f} %), "
+        f"p0 = {m['p0']:.3f} (Hertz {m['p0_hertz']:.3f}, {100 * m['p0_err']:+.2f} %), "
+        f"{m['closed']} nodes closed, {extra['iterations']} Newton iterations",
+        file=sys.stderr,
+    )
+    for k in ("F", "a", "p0"):
+        if not math.isfinite(m[k]):
+            print(f"{code}: {k} is not finite", file=sys.stderr)
+            sys.exit(1)
+

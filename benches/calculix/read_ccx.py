@@ -11,13 +11,12 @@ divides by its (reference) area. Also printed: the total reaction on the cap's n
 force on the sphere, a check on sum(N)), the number of equations and Newton iterations.
 Exits non-zero when the run did not reach the end of the step or a number is missing.
 """
-import math
 import os
 import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hertz_ref import line, measure, tributary_areas  # noqa: E402
+from hertz_ref import measure, report, tributary_areas  # noqa: E402
 
 
 def fail(msg):
@@ -133,18 +132,7 @@ def main():
             extra["unknowns"] = eq[-1]
     extra["iterations"] = iters
     extra["F_reaction"] = f"{-4.0 * rf[0][2]:.7g}"
-    print(line("ccx", m, extra))
-    print(
-        f"ccx {job}: F = {m['F']:.6f} (reaction on the cap {-4.0 * rf[0][2]:.6f}; Hertz for d: {m['F_hertz']:.6f}, "
-        f"{100 * m['F_err']:+.2f} %), a = {m['a']:.5f} (Hertz {m['a_hertz']:.5f}, {100 * m['a_err']:+.2f} %), "
-        f"p0 = {m['p0']:.3f} (Hertz {m['p0_hertz']:.3f}, {100 * m['p0_err']:+.2f} %), "
-        f"{m['closed']} nodes closed, {iters} Newton iterations",
-        file=sys.stderr,
-    )
-    for k in ("F", "a", "p0"):
-        if not math.isfinite(m[k]):
-            fail(f"{k} is not finite")
-
+    report("ccx", job, m, extra, note=f"reaction on the cap {-4.0 * rf[0][2]:.6f}; ")
 
 if __name__ == "__main__":
     main()

@@ -9,12 +9,11 @@ reference area of the block's top face around it, as contrail's `tributary_areas
 Exits non-zero if the run did not complete or a number is missing.
 """
 import json
-import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hertz_ref import line, measure  # noqa: E402
+from hertz_ref import measure, report  # noqa: E402
 from hertz_3d_inp import block_grid  # noqa: E402
 
 
@@ -61,18 +60,7 @@ def main():
         pts.append((x, y, p["normal_force"], area(p["node"])))
     m = measure(pts)
     extra = {"unknowns": run.get("free_dofs", "?"), "iterations": iterations}
-    print(line("contrail", m, extra))
-    print(
-        f"contrail {path}: F = {m['F']:.6f} (Hertz for d: {m['F_hertz']:.6f}, {100 * m['F_err']:+.2f} %), "
-        f"a = {m['a']:.5f} (Hertz {m['a_hertz']:.5f}, {100 * m['a_err']:+.2f} %), "
-        f"p0 = {m['p0']:.3f} (Hertz {m['p0_hertz']:.3f}, {100 * m['p0_err']:+.2f} %), "
-        f"{m['closed']} nodes closed, {iterations} Newton iterations",
-        file=sys.stderr,
-    )
-    for k in ("F", "a", "p0"):
-        if not math.isfinite(m[k]):
-            fail(f"{k} is not finite")
-
+    report("contrail", path, m, extra)
 
 if __name__ == "__main__":
     main()

@@ -243,15 +243,7 @@ pub fn supervariable_rcm(n: usize, col_ptr: &[usize], row_idx: &[usize], root: R
         let v = mem[0];
         let start = q_idx.len();
         q_idx.extend(row_idx[col_ptr[v]..col_ptr[v + 1]].iter().map(|&r| group[r]));
-        q_idx[start..].sort_unstable();
-        let mut w = start;
-        for k in start..q_idx.len() {
-            if k == start || q_idx[k] != q_idx[w - 1] {
-                q_idx[w] = q_idx[k];
-                w += 1;
-            }
-        }
-        q_idx.truncate(w);
+        super::sparse::sort_dedup_tail(&mut q_idx, start);
         q_ptr.push(q_idx.len());
     }
     reverse_cuthill_mckee(m, &q_ptr, &q_idx, root)

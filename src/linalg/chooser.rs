@@ -272,9 +272,11 @@ impl LinearSolve {
         let Some(plan) = self.ldlt.as_mut() else {
             return false;
         };
-        let lagged =
-            (self.lagged).get_or_insert_with(|| LaggedSolve::new(a.n, plan.flops.0, plan.factor_nnz(), a.nnz()));
-        if self.solver == LinearSolver::Auto && plan.factored() && lagged.worth_trying() {
+        // only `auto` reuses factors: `general` is the reference that factorises every tangent
+        if self.solver == LinearSolver::Auto && self.lagged.is_none() {
+            self.lagged = Some(LaggedSolve::new(a.n, plan.flops.0, plan.factor_nnz(), a.nnz()));
+        }
+        if let Some(lagged) = self.lagged.as_mut().filter(|l| plan.factored() && l.worth_trying()) {
             let started = Instant::now();
             let solved = lagged.solve(plan, a, b, par);
             self.times.solve_time += started.elapsed();
@@ -284,7 +286,9 @@ impl LinearSolve {
         }
         match factorize_and_solve(plan, a, b, par, &mut self.times) {
             Ok(()) => {
-                lagged.factorized();
+                if let Some(lagged) = self.lagged.as_mut() {
+                    lagged.factorized();
+                }
                 self.ldlt_stats.solves += 1;
                 true
             }

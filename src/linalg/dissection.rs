@@ -16,8 +16,13 @@
 //! factorisation costs fewer flops.
 
 use super::aggregation::MeshNodes;
+use super::sparse::sort_dedup_tail;
 
-/// Node sets of at most this many nodes are not cut further.
+/// Node sets of at most this many nodes are not cut further: on such a set a separator is
+/// a large part of the set, and the dissection stops at small subgraphs (George & Liu,
+/// *Computer Solution of Large Sparse Positive Definite Systems*, 1981, §8.2, where the
+/// recursion ends at a few grid lines). Any small value serves: faer's supernodal analysis
+/// merges the leaves' columns into the supernodes of their parents.
 pub const LEAF_NODES: usize = 16;
 
 /// The node graph of a pattern: for each node with free unknowns, its unknowns, position and
@@ -113,15 +118,7 @@ fn node_adjacency(eqs: &[Vec<usize>], node_of: &[u32], col_ptr: &[usize], row_id
                 }
             }
         }
-        adjacency[start..].sort_unstable();
-        let mut kept = start;
-        for i in start..adjacency.len() {
-            if i == start || adjacency[i] != adjacency[kept - 1] {
-                adjacency[kept] = adjacency[i];
-                kept += 1;
-            }
-        }
-        adjacency.truncate(kept);
+        sort_dedup_tail(&mut adjacency, start);
         offsets.push(adjacency.len());
     }
     (offsets, adjacency)

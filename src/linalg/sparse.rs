@@ -165,3 +165,17 @@ impl SparseMatrix {
         }
     }
 }
+
+/// Sort `v[start..]` and drop its repeats (the neighbour list of one vertex being built at
+/// the end of a flat adjacency list).
+pub(crate) fn sort_dedup_tail<T: Ord + Copy>(v: &mut Vec<T>, start: usize) {
+    v[start..].sort_unstable();
+    let mut kept = start;
+    for k in start..v.len() {
+        if k == start || v[k] != v[kept - 1] {
+            v[kept] = v[k];
+            kept += 1;
+        }
+    }
+    v.truncate(kept);
+}

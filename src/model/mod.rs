@@ -276,19 +276,27 @@ impl Model {
     /// The boundary edges of body `body` (edges of exactly one of its elements), oriented
     /// as in their element, i.e. with the body on their left like the faces.
     pub fn boundary_segments(&self, body: usize) -> Vec<[usize; 2]> {
-        let mut count = std::collections::HashMap::<[usize; 2], usize>::new();
-        fn edges(e: &Element) -> impl Iterator<Item = [usize; 2]> + '_ {
-            (0..4).map(move |i| [e.nodes[i], e.nodes[(i + 1) % 4]])
-        }
-        let of_body = || self.elements.iter().filter(|e| e.body == body);
-        for [a, b] in of_body().flat_map(edges) {
-            *count.entry([a.min(b), a.max(b)]).or_default() += 1;
-        }
-        of_body()
-            .flat_map(edges)
-            .filter(|[a, b]| count[&[(*a).min(*b), (*a).max(*b)]] == 1)
-            .collect()
+        let quads: Vec<[usize; 4]> = (self.elements.iter())
+            .filter(|e| e.body == body)
+            .map(|e| [e.nodes[0], e.nodes[1], e.nodes[2], e.nodes[3]])
+            .collect();
+        quad_boundary_edges(&quads)
     }
+}
+
+/// The edges of a mesh of 4-node cells that belong to one cell only, each as that cell runs
+/// it, in cell order.
+pub fn quad_boundary_edges(quads: &[[usize; 4]]) -> Vec<[usize; 2]> {
+    let edges = |q: &[usize; 4]| {
+        let q = *q;
+        (0..4).map(move |i| [q[i], q[(i + 1) % 4]])
+    };
+    let key = |[a, b]: [usize; 2]| [a.min(b), a.max(b)];
+    let mut count = std::collections::HashMap::<[usize; 2], usize>::new();
+    for e in quads.iter().flat_map(edges) {
+        *count.entry(key(e)).or_default() += 1;
+    }
+    quads.iter().flat_map(edges).filter(|&e| count[&key(e)] == 1).collect()
 }
 
 /// Neighbour lists of a chain of segments (neighbours share an end node).

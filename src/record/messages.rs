@@ -315,17 +315,9 @@ impl ModelRecord {
             }
             _ => {
                 self.elements.iter().flatten().for_each(|&n| interior[n] = true);
-                let mut count = std::collections::HashMap::<[usize; 2], usize>::new();
-                for e in &self.elements {
-                    for k in 0..4 {
-                        let (a, b) = (e[k], e[(k + 1) % 4]);
-                        *count.entry([a.min(b), a.max(b)]).or_default() += 1;
-                    }
-                }
-                count
+                crate::model::quad_boundary_edges(&self.elements)
                     .into_iter()
-                    .filter(|(_, n)| *n == 1)
-                    .flat_map(|(e, _)| e)
+                    .flatten()
                     .collect()
             }
         };
