@@ -5,6 +5,7 @@
 //! * the contact-point kernel (residual and tangent by second-order dual numbers): a slave
 //!   node on a face segment that it reached from the neighbouring segment (4 node slots,
 //!   8 DOFs), in stick and in slip, for each history-transfer scheme;
+//! * the hexahedron (plain and EAS-21), residual with and without tangent, warm-started `α`;
 //! * the 3D node-to-surface kernel (residual and tangent by first-order dual numbers and the
 //!   closed-form variations, 15 DOFs): a slave node penetrating a warped bilinear facet with
 //!   a friction history, in stick and in slip, and the residual alone.
@@ -14,6 +15,7 @@
 use contrail::contact::point::{Closed, Path, PointProblem, SegSource, SlaveSource, MAX_NODES};
 use contrail::contact::transfer::StoredTraction;
 use contrail::contact3d::point::{History, PointProblem as PointProblem3, DOFS as DOFS3};
+use contrail::element::hex8::{hex8_residual_tangent_with, Hex8Geometry, Hex8Kind, EAS_COUNT};
 use contrail::element::material::{lame, Material};
 use contrail::element::quad::{quad_residual_tangent_with, ElementKind, QuadGeometry};
 use contrail::model::contact::{ContactLaw, TransferKind};
@@ -76,6 +78,8 @@ fn bench(c: &mut Criterion) {
     });
     g.finish();
 
+    hexahedron(c, &materials);
+
     let mut g = c.benchmark_group("contact-point");
     for scheme in [
         TransferKind::Straightforward,
@@ -102,6 +106,53 @@ fn bench(c: &mut Criterion) {
         g.bench_function(format!("{state}/residual"), |b| {
             b.iter(|| black_box(black_box(&p).residual(&mut r)))
         });
+    }
+    g.finish();
+}
+
+/// A distorted hexahedron's reference nodes and displacements (every strain component
+/// nonzero).
+const X3: [[f64; 3]; 8] = [
+    [0.0, 0.0, 0.0],
+    [1.1, 0.05, 0.0],
+    [1.0, 0.9, 0.1],
+    [-0.05, 1.0, 0.0],
+    [0.0, 0.1, 1.0],
+    [1.0, 0.0, 1.1],
+    [1.05, 1.0, 0.95],
+    [0.0, 0.95, 1.0],
+];
+
+/// The hexahedra: plain and EAS-21, both materials, residual with and without tangent, `α`
+/// warm from a displacement 1e-4 away (as in a Newton iteration).
+fn hexahedron(c: &mut Criterion, materials: &[(&str, Material)]) {
+    let u0: [[f64; 3]; 8] = std::array::from_fn(|i| std::array::from_fn(|a| 0.02 * ((3 * i + a) as f64).sin()));
+    let mut g = c.benchmark_group("hexahedron");
+    for (name, mat) in materials {
+        for kind in [Hex8Kind::Hex8, Hex8Kind::Hex8Eas] {
+            let geo = Hex8Geometry::new(kind, &X3).expect("valid element");
+            let mut alpha = [0.0; EAS_COUNT];
+            let (mut r, mut k) = ([0.0; 24], [0.0; 576]);
+            hex8_residual_tangent_with(kind, mat, &geo, &u0, &mut alpha, &mut r, None).expect("evaluates");
+            let mut u = u0;
+            u[2][0] += 1e-4;
+            g.bench_function(format!("{kind:?}/{name}/residual+tangent"), |b| {
+                b.iter(|| {
+                    let mut a = alpha;
+                    hex8_residual_tangent_with(kind, mat, &geo, black_box(&u), &mut a, &mut r, Some(&mut k))
+                        .expect("evaluates");
+                    black_box((&r, &k));
+                })
+            });
+            g.bench_function(format!("{kind:?}/{name}/residual"), |b| {
+                b.iter(|| {
+                    let mut a = alpha;
+                    hex8_residual_tangent_with(kind, mat, &geo, black_box(&u), &mut a, &mut r, None)
+                        .expect("evaluates");
+                    black_box(&r);
+                })
+            });
+        }
     }
     g.finish();
 }

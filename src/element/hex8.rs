@@ -190,16 +190,21 @@ pub(crate) struct GaussGeom {
     pub grad: SMatrix<f64, 3, 8>,
     /// `j · w` (weights are 1 for 2×2×2 Gauss)
     pub dv: f64,
-    /// `Ẽ = G α` (6×21, zero for [`Hex8Kind::Hex8`], the first five columns for
-    /// [`Hex8Kind::SolidShell`])
-    pub g: SMatrix<f64, 6, EAS_COUNT>,
+    /// `j₀ / j`: the enhanced interpolation here is `G = (j₀/j) T₀ M(ξ_q)`
+    /// ([`Hex8Geometry::enhanced`]).
+    pub scale: f64,
 }
 
 /// Reference geometry of one hexahedron at its eight Gauss points: shape-function gradients,
-/// volume weights and the EAS interpolation `G = (j₀/j) T₀ M`; computed once per element.
+/// volume weights and the factors of the EAS interpolation `G = (j₀/j) T₀ M`; computed once
+/// per element. `G` is kept factored (`T₀` per element, `j₀/j` per point, `M` a constant of
+/// the Gauss point with one entry per mode): a dense `G` would be 1 kB per point, and the
+/// kernel's products with it cost three times those with the factors.
 #[derive(Debug, Clone, Copy)]
 pub struct Hex8Geometry {
     pub(crate) gp: [GaussGeom; 8],
+    /// `T₀`: covariant natural Voigt strain → Cartesian Voigt strain at the centre.
+    pub(crate) t0: Matrix6<f64>,
     /// Columns: the natural axes at the centre, `∂X/∂ξ`, `∂X/∂η`, `∂X/∂ζ` (half the element's
     /// extents along them).
     pub(crate) axes: Matrix3<f64>,
@@ -209,6 +214,24 @@ pub struct Hex8Geometry {
     /// The reference nodes (the solid-shell samples its assumed strains from them).
     pub(crate) x: [[f64; 3]; 8],
     pub(crate) kind: Hex8Kind,
+}
+
+/// The enhanced modes of an element kind ([`EAS_MODES`], [`SHELL_EAS_MODES`], none).
+pub(crate) fn modes_of(kind: Hex8Kind) -> &'static [(usize, &'static [usize])] {
+    match kind {
+        Hex8Kind::Hex8 => &[],
+        Hex8Kind::Hex8Eas => &EAS_MODES,
+        Hex8Kind::SolidShell => &SHELL_EAS_MODES,
+    }
+}
+
+/// The first `N` of `modes` as the kernel takes them: each mode's natural Voigt row, and
+/// its value `M_m(ξ_q)` at each Gauss point.
+pub(crate) fn factored_modes<const N: usize>(modes: &[(usize, &[usize])]) -> ([usize; N], [[f64; N]; 8]) {
+    let rows = std::array::from_fn(|m| modes[m].0);
+    let values =
+        std::array::from_fn(|q| std::array::from_fn(|m| modes[m].1.iter().map(|&a| HEX8_GAUSS[q][a]).product::<f64>()));
+    (rows, values)
 }
 
 /// `det J` if it is positive and finite, else [`Hex8Error::BadGeometry`].
@@ -234,28 +257,35 @@ impl Hex8Geometry {
             let jinv = jm.try_inverse().ok_or(Hex8Error::BadGeometry(det))?;
             // ∂N/∂X_a = Σ_b ∂N/∂ξ_b (J⁻¹)_ba
             let grad = jinv.transpose() * d;
-            let g = match kind {
-                Hex8Kind::Hex8 => SMatrix::zeros(),
-                Hex8Kind::Hex8Eas => (det0 / det) * t0 * eas_interpolation(&EAS_MODES, p),
-                Hex8Kind::SolidShell => (det0 / det) * t0 * eas_interpolation(&SHELL_EAS_MODES, p),
-            };
-            Ok(GaussGeom { grad, dv: det, g })
+            Ok(GaussGeom {
+                grad,
+                dv: det,
+                scale: det0 / det,
+            })
         };
         let mut gp = [GaussGeom {
             grad: SMatrix::zeros(),
             dv: 0.0,
-            g: SMatrix::zeros(),
+            scale: 0.0,
         }; 8];
         for (q, p) in gp.iter_mut().zip(&HEX8_GAUSS) {
             *q = mk(p)?;
         }
         Ok(Hex8Geometry {
             gp,
+            t0,
             axes: j0,
             penalty: [0.0; EAS_COUNT],
             x: *x,
             kind,
         })
+    }
+
+    /// `G_q = (j₀/j_q) T₀ M(ξ_q)`: the enhanced interpolation `Ẽ = G α` at Gauss point `q`,
+    /// dense (6×21; zero for [`Hex8Kind::Hex8`], the first five columns for
+    /// [`Hex8Kind::SolidShell`]).
+    pub(crate) fn enhanced(&self, q: usize) -> SMatrix<f64, 6, EAS_COUNT> {
+        self.gp[q].scale * self.t0 * eas_interpolation(modes_of(self.kind), &HEX8_GAUSS[q])
     }
 
     /// Reference volume `Σ_q j_q` (exact for the trilinear map).
@@ -297,16 +327,20 @@ struct GaussKin {
 
 fn kinematics(gq: &GaussGeom, u: &[[f64; 3]; 8]) -> GaussKin {
     let f = deformation_gradient(&gq.grad, u);
-    let n = &gq.grad;
-    let b = SMatrix::from_fn(|a, col| {
-        let (node, r) = (col / 3, col % 3);
-        let (i, j) = PAIRS[a];
-        if i == j {
-            f[(r, i)] * n[(i, node)]
-        } else {
-            f[(r, i)] * n[(j, node)] + f[(r, j)] * n[(i, node)]
+    let mut b = SMatrix::<f64, 6, 24>::zeros();
+    // δE_ij = ½ (Fᵀ δF + δFᵀ F)_ij, δF = δu_I ⊗ ∇N_I: rows in [`PAIRS`] order
+    for (node, g) in gq.grad.column_iter().enumerate() {
+        for r in 0..3 {
+            let mut col = b.column_mut(3 * node + r);
+            let fr = f.row(r);
+            col[0] = fr[0] * g[0];
+            col[1] = fr[1] * g[1];
+            col[2] = fr[2] * g[2];
+            col[3] = fr[0] * g[1] + fr[1] * g[0];
+            col[4] = fr[1] * g[2] + fr[2] * g[1];
+            col[5] = fr[0] * g[2] + fr[2] * g[0];
         }
-    });
+    }
     let c = f.transpose() * f;
     let ec = Vector6::from_fn(|a, _| {
         let (i, j) = PAIRS[a];
@@ -330,7 +364,9 @@ pub fn hex8_gauss_strains(
         return solid_shell::shell_gauss_strains(geo, u, alpha);
     }
     let al = SVector::from(*alpha);
-    Ok(geo.gp.map(|q| kinematics(&q, u).ec + q.g * al))
+    Ok(std::array::from_fn(|q| {
+        kinematics(&geo.gp[q], u).ec + geo.enhanced(q) * al
+    }))
 }
 
 #[path = "hex8_kernel.rs"]

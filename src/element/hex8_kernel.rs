@@ -4,8 +4,11 @@
 //! `N` enhanced modes, so the solid-shell (`solid_shell.rs`), whose strains are assumed
 //! rather than compatible, shares them.
 
-use super::{hex8_min_det_f, kinematics, GaussKin, Hex8Error, Hex8Geometry, Hex8Kind, Material, EAS_COUNT};
-use nalgebra::{Matrix3, SMatrix, SVector, Vector6};
+use super::{
+    factored_modes, hex8_min_det_f, kinematics, GaussKin, Hex8Error, Hex8Geometry, Hex8Kind, Material, EAS_COUNT,
+    EAS_MODES,
+};
+use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, Vector6};
 
 type Vec24 = SVector<f64, 24>;
 type Mat24 = SMatrix<f64, 24, 24>;
@@ -29,24 +32,41 @@ const EAS_NEAR: f64 = 1e-6;
 /// One Gauss point as a pass sees it: the volume weight, the strain–displacement matrix
 /// `δE = B δu` (Cartesian Voigt, local DOFs `[u0x, u0y, u0z, u1x, …]`), the strain `E` of the
 /// displacements (compatible for the hexahedron, assumed for the solid-shell) and the
-/// enhanced interpolation `Ẽ = G α`.
+/// enhanced interpolation `Ẽ = G α` in factored form, `G = c T₀ M` (`c = j₀/j` here, `M`
+/// the mode values here, one per mode in its natural Voigt row; [`EnhancedElement`]).
 pub(crate) struct PassPoint<'a, const N: usize> {
     pub dv: f64,
     pub b: &'a SMatrix<f64, 6, 24>,
     pub e: &'a Vector6<f64>,
-    pub g: &'a SMatrix<f64, 6, N>,
+    pub scale: f64,
+    pub m: &'a [f64; N],
 }
 
 /// `K_uu += ∂²E/∂u∂u : S dv` at Gauss point `q` (the geometric stiffness), on the upper
 /// triangle of the 24×24 matrix.
 pub(crate) type GeometricStiffness<'a> = &'a dyn Fn(usize, &Vector6<f64>, f64, &mut Mat24);
 
-/// An element as the kernel evaluates it: eight Gauss points, the penalties on the enhanced
-/// parameters (`Π += ½ Σ p_m α_m²`) and its geometric stiffness.
+/// An element as the kernel evaluates it: eight Gauss points, the transformation `T₀` and
+/// each mode's natural Voigt row (the factors of `G` common to the points), the penalties on
+/// the enhanced parameters (`Π += ½ Σ p_m α_m²`) and its geometric stiffness.
 pub(crate) struct EnhancedElement<'a, const N: usize> {
     pub points: [PassPoint<'a, N>; 8],
+    pub t0: &'a Matrix6<f64>,
+    pub rows: &'a [usize; N],
     pub penalty: &'a [f64; N],
     pub geometric: GeometricStiffness<'a>,
+}
+
+impl<const N: usize> EnhancedElement<'_, N> {
+    /// `G_q a = c_q T₀ (M_q a)`: an enhanced strain at Gauss point `q`.
+    fn enhanced_strain(&self, q: usize, a: &SVector<f64, N>) -> Vector6<f64> {
+        let p = &self.points[q];
+        let mut natural = Vector6::zeros();
+        for (m, (&row, &v)) in self.rows.iter().zip(p.m).enumerate() {
+            natural[row] += v * a[m];
+        }
+        self.t0 * (natural * p.scale)
+    }
 }
 
 /// Sums of one pass over the Gauss points (`kuu` and `kaa` in full: each summed on its upper
@@ -60,6 +80,37 @@ struct Sums<const N: usize> {
     energy: f64,
 }
 
+impl<const N: usize> Sums<N> {
+    fn zeros() -> Self {
+        Sums {
+            ru: Vec24::zeros(),
+            kuu: SMatrix::zeros(),
+            kua: SMatrix::zeros(),
+            kaa: SMatrix::zeros(),
+            ra: SVector::zeros(),
+            energy: 0.0,
+        }
+    }
+
+    /// Zero what a pass with `wanted` sums into.
+    fn clear(&mut self, wanted: Wanted) {
+        if wanted.eas {
+            self.kaa.fill(0.0);
+            self.ra.fill(0.0);
+            if wanted.full {
+                self.kua.fill(0.0);
+            }
+        }
+        if wanted.full {
+            self.ru.fill(0.0);
+            self.energy = 0.0;
+            if wanted.k {
+                self.kuu.fill(0.0);
+            }
+        }
+    }
+}
+
 /// What one Gauss pass evaluates.
 #[derive(Clone, Copy)]
 struct Wanted {
@@ -70,21 +121,6 @@ struct Wanted {
     full: bool,
     /// `K_uu` (with `full`).
     k: bool,
-}
-
-/// `out += aᵀ b` on the upper triangle of the square `out` (`a`, `b`: `R × C`).
-#[inline]
-pub(crate) fn add_upper_tr_mul<const R: usize, const C: usize>(
-    out: &mut SMatrix<f64, C, C>,
-    a: &SMatrix<f64, R, C>,
-    b: &SMatrix<f64, R, C>,
-) {
-    for j in 0..C {
-        let bj = b.column(j);
-        for i in 0..=j {
-            out[(i, j)] += a.column(i).dot(&bj);
-        }
-    }
 }
 
 /// Copy the upper triangle of a square matrix onto its lower one.
@@ -108,36 +144,29 @@ pub(crate) fn add_node_pairs_upper(kuu: &mut Mat24, gsg: &SMatrix<f64, 8, 8>) {
     }
 }
 
-/// One pass over the Gauss points at the enhanced parameters `al`: with `eas`
+/// One pass over the Gauss points at the enhanced parameters `al`, into `t`: with `eas`
 /// `R_α = Σ Gᵀ S dv`, `K_αα = Σ Gᵀ D G dv` (plus the penalties of held modes,
 /// `½ Σ p_m α_m²`); with `full` also `R_u`, the energy and `K_uα = Σ Bᵀ D G dv`, and with `k`
 /// `K_uu` (material part `Bᵀ D B` plus the element's geometric part).
+///
+/// With `G = c T₀ M` and `M` one entry `M_m` per mode in row `r_m`:
+/// `R_α,m = Σ c M_m (T₀ᵀ S)_{r_m} dv`, `K_αα,mn = Σ c² M_m M_n (T₀ᵀ D T₀)_{r_m r_n} dv`,
+/// `K_uα,·m = Σ c M_m (Bᵀ D T₀)_{·r_m} dv`.
 fn gauss_pass<const N: usize>(
     material: &Material,
     el: &EnhancedElement<'_, N>,
     al: &SVector<f64, N>,
     wanted: Wanted,
-) -> Result<Sums<N>, Hex8Error> {
+    t: &mut Sums<N>,
+) -> Result<(), Hex8Error> {
     let Wanted { eas, full, k: want_k } = wanted;
-    let mut t = Sums {
-        ru: Vec24::zeros(),
-        kuu: SMatrix::zeros(),
-        kua: SMatrix::zeros(),
-        kaa: SMatrix::zeros(),
-        ra: SVector::zeros(),
-        energy: 0.0,
-    };
+    t.clear(wanted);
     for (q, p) in el.points.iter().enumerate() {
         let dv = p.dv;
-        let e = if eas { p.e + p.g * al } else { *p.e };
+        let e = if eas { p.e + el.enhanced_strain(q, al) } else { *p.e };
         let (s, d) = material.stress_tangent_3d(&e)?;
         if eas {
-            let dg = (d * p.g) * dv;
-            t.ra += p.g.tr_mul(&s) * dv;
-            add_upper_tr_mul(&mut t.kaa, p.g, &dg);
-            if full {
-                t.kua += p.b.tr_mul(&dg);
-            }
+            add_enhanced_terms(t, el, p, &s, &d, full);
         }
         if !full {
             continue;
@@ -145,7 +174,7 @@ fn gauss_pass<const N: usize>(
         t.energy += material.energy_3d(&e)? * dv;
         t.ru += p.b.tr_mul(&s) * dv;
         if want_k {
-            add_upper_tr_mul(&mut t.kuu, p.b, &((d * p.b) * dv));
+            add_material_stiffness(&mut t.kuu, p.b, &d, dv);
             (el.geometric)(q, &s, dv, &mut t.kuu);
         }
     }
@@ -160,13 +189,52 @@ fn gauss_pass<const N: usize>(
     if full && want_k {
         mirror_upper(&mut t.kuu);
     }
-    Ok(t)
+    Ok(())
+}
+
+/// `K_uu += Bᵀ D B dv` (in full; [`gauss_pass`] mirrors the upper triangle at its end), as
+/// `(Bᵀ D) (Bᵀ)ᵀ`: products whose inner loops run down columns of 24 (vectorised), where
+/// entry-by-entry dot products of length 6 would not be.
+fn add_material_stiffness(kuu: &mut Mat24, b: &SMatrix<f64, 6, 24>, d: &Matrix6<f64>, dv: f64) {
+    let bt = b.transpose();
+    let btd = bt * d;
+    kuu.gemm(dv, &btd, b, 1.0);
+}
+
+/// One Gauss point's `R_α`, `K_αα` (upper triangle) and, with `full`, `K_uα`, from its
+/// stress `s` and tangent `d` ([`gauss_pass`] for the factored formulas).
+fn add_enhanced_terms<const N: usize>(
+    t: &mut Sums<N>,
+    el: &EnhancedElement<'_, N>,
+    p: &PassPoint<'_, N>,
+    s: &Vector6<f64>,
+    d: &Matrix6<f64>,
+    full: bool,
+) {
+    let w = p.dv * p.scale;
+    let dt = d * el.t0;
+    let s_nat = el.t0.tr_mul(s);
+    let d_nat = el.t0.tr_mul(&dt);
+    for (n, (&rn, &mn)) in el.rows.iter().zip(p.m).enumerate() {
+        let wn = w * mn;
+        t.ra[n] += wn * s_nat[rn];
+        let wnc = wn * p.scale;
+        for (m, (&rm, &mm)) in el.rows.iter().zip(p.m).enumerate().take(n + 1) {
+            t.kaa[(m, n)] += wnc * mm * d_nat[(rm, rn)];
+        }
+    }
+    if full {
+        let bdt = p.b.tr_mul(&dt);
+        for (n, (&rn, &mn)) in el.rows.iter().zip(p.m).enumerate() {
+            t.kua.column_mut(n).axpy(w * mn, &bdt.column(rn), 1.0);
+        }
+    }
 }
 
 /// Largest change of an enhanced strain component, `max_q ‖G_q δα‖∞`, that the step `δα`
 /// makes at the Gauss points.
 fn enhanced_strain_change<const N: usize>(el: &EnhancedElement<'_, N>, da: &SVector<f64, N>) -> f64 {
-    el.points.iter().map(|q| (q.g * da).amax()).fold(0.0, f64::max)
+    (0..8).map(|q| el.enhanced_strain(q, da).amax()).fold(0.0, f64::max)
 }
 
 /// Residual and (optionally) tangent of one hexahedron (builds its [`Hex8Geometry`] and
@@ -228,13 +296,17 @@ pub fn hex8_residual_tangent_with(
         let st = Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2]);
         add_node_pairs_upper(kuu, &(grad.tr_mul(&(st * grad)) * dv));
     };
+    let (rows, values) = factored_modes::<EAS_COUNT>(&EAS_MODES);
     let el = EnhancedElement {
         points: std::array::from_fn(|q| PassPoint {
             dv: geo.gp[q].dv,
             b: &kin[q].b,
             e: &kin[q].ec,
-            g: &geo.gp[q].g,
+            scale: geo.gp[q].scale,
+            m: &values[q],
         }),
+        t0: &geo.t0,
+        rows: &rows,
         penalty: &geo.penalty,
         geometric: &geometric,
     };
@@ -253,20 +325,20 @@ pub(crate) fn enhanced_residual_tangent<const N: usize>(
     k: Option<&mut [f64; 576]>,
 ) -> Result<f64, Hex8Error> {
     let want_k = k.is_some();
-    let t = if eas {
+    let mut t = Sums::zeros();
+    if eas {
         let mut al = SVector::from(*alpha);
-        let (mut t, factor) = solve_enhanced(material, el, &mut al, want_k)?;
+        let factor = solve_enhanced(material, el, &mut al, want_k, &mut t)?;
         condense(&mut t, &factor, want_k);
         alpha.copy_from_slice(al.as_slice());
-        t
     } else {
         let wanted = Wanted {
             eas: false,
             full: true,
             k: want_k,
         };
-        gauss_pass(material, el, &SVector::zeros(), wanted)?
-    };
+        gauss_pass(material, el, &SVector::zeros(), wanted, &mut t)?;
+    }
     if let Some(kout) = k {
         for (i, row) in kout.chunks_exact_mut(24).enumerate() {
             for (j, v) in row.iter_mut().enumerate() {
@@ -306,8 +378,8 @@ impl<const N: usize> KaaFactor<N> {
 }
 
 /// The local Newton iteration on `α` from `al` (module documentation of
-/// [`hex8_residual_tangent_with`]): the converged pass and `K_αα` factorised; `al` is left at
-/// the converged `α`. Passes evaluate `R_α` and `K_αα` only until a step is below
+/// [`hex8_residual_tangent_with`]): `K_αα` factorised, the converged pass left in `t` and
+/// `al` at the converged `α`. Passes evaluate `R_α` and `K_αα` only until a step is below
 /// [`EAS_NEAR`]; from then on they are full, and a pass that finds `α` converged without
 /// being full is repeated fully at the same `α` (the same `α` and the same figures as full
 /// passes throughout).
@@ -316,7 +388,8 @@ fn solve_enhanced<const N: usize>(
     el: &EnhancedElement<'_, N>,
     al: &mut SVector<f64, N>,
     want_k: bool,
-) -> Result<(Sums<N>, KaaFactor<N>), Hex8Error> {
+    t: &mut Sums<N>,
+) -> Result<KaaFactor<N>, Hex8Error> {
     let mut last = f64::INFINITY;
     let mut near = false;
     for it in 0..EAS_MAX_ITERATIONS {
@@ -325,7 +398,7 @@ fn solve_enhanced<const N: usize>(
             full: near,
             k: want_k && near,
         };
-        let t = gauss_pass(material, el, al, wanted)?;
+        gauss_pass(material, el, al, wanted, t)?;
         let factor = KaaFactor::new(&t.kaa)?;
         let da = factor.solve(&t.ra);
         let step = enhanced_strain_change(el, &da);
@@ -334,7 +407,7 @@ fn solve_enhanced<const N: usize>(
         }
         if step <= EAS_STRAIN_TOLERANCE || (step <= EAS_ROUNDOFF_FLOOR && step > 0.5 * last) {
             if near {
-                return Ok((t, factor));
+                return Ok(factor);
             }
             near = true;
             continue;
@@ -351,7 +424,7 @@ fn solve_enhanced<const N: usize>(
         full: false,
         k: false,
     };
-    let t = gauss_pass(material, el, al, wanted)?;
+    gauss_pass(material, el, al, wanted, t)?;
     Err(Hex8Error::EasNotConverged(t.ra.norm()))
 }
 
@@ -370,10 +443,9 @@ fn condense<const N: usize>(t: &mut Sums<N>, factor: &KaaFactor<N>, want_k: bool
                 .expect("a Cholesky factor has a nonzero diagonal");
             t.ru -= y.tr_mul(&z);
             if want_k {
-                let mut yty = Mat24::zeros();
-                add_upper_tr_mul(&mut yty, &y, &y);
-                mirror_upper(&mut yty);
-                t.kuu -= yty;
+                // `Yᵀ Y` entry by entry sums the same products in the same order for
+                // `(i, j)` and `(j, i)`: the condensed tangent stays exactly symmetric
+                t.kuu.gemm(-1.0, &y.transpose(), &y, 1.0);
             }
         }
         KaaFactor::Inverse(inv) => {

@@ -81,11 +81,11 @@ impl Hex8Geometry {
             return 0.0;
         };
         let d0: Matrix6<f64> = d0;
-        self.gp
-            .iter()
+        (0..8)
             .map(|q| {
-                let gm = q.g.column(m);
-                q.dv * gm.dot(&(d0 * gm))
+                let g = self.enhanced(q);
+                let gm = g.column(m);
+                self.gp[q].dv * gm.dot(&(d0 * gm))
             })
             .sum()
     }

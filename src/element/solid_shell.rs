@@ -35,7 +35,8 @@
 
 use super::kernel::{add_node_pairs_upper, enhanced_residual_tangent, EnhancedElement, PassPoint};
 use super::{
-    hex8_dn_dxi, hex8_jacobian, strain_transformation, Hex8Error, Hex8Geometry, Material, EAS_COUNT, HEX8_GAUSS, PAIRS,
+    factored_modes, hex8_dn_dxi, hex8_jacobian, strain_transformation, Hex8Error, Hex8Geometry, Material, EAS_COUNT,
+    HEX8_GAUSS, PAIRS,
 };
 use nalgebra::{Matrix3, Matrix6, SMatrix, Vector6};
 
@@ -201,8 +202,7 @@ pub(super) fn residual_tangent(
     k: Option<&mut [f64; 576]>,
 ) -> Result<f64, Hex8Error> {
     let a = assumed(geo, u)?;
-    let g: [SMatrix<f64, 6, SHELL_EAS_COUNT>; 8] =
-        std::array::from_fn(|q| geo.gp[q].g.fixed_columns::<SHELL_EAS_COUNT>(0).into_owned());
+    let (rows, values) = factored_modes::<SHELL_EAS_COUNT>(&SHELL_EAS_MODES);
     let penalty: [f64; SHELL_EAS_COUNT] = std::array::from_fn(|m| geo.penalty[m]);
     let geometric =
         |q: usize, s: &Vector6<f64>, dv: f64, kuu: &mut SMatrix<f64, 24, 24>| geometric_stiffness(&a, q, s, dv, kuu);
@@ -211,8 +211,11 @@ pub(super) fn residual_tangent(
             dv: a.points[q].0,
             b: &a.points[q].1,
             e: &a.points[q].2,
-            g: &g[q],
+            scale: geo.gp[q].scale,
+            m: &values[q],
         }),
+        t0: &geo.t0,
+        rows: &rows,
         penalty: &penalty,
         geometric: &geometric,
     };
@@ -230,7 +233,8 @@ pub(super) fn shell_gauss_strains(
 ) -> Result<[Vector6<f64>; 8], Hex8Error> {
     let a = assumed(geo, u)?;
     Ok(std::array::from_fn(|q| {
-        let enhanced: Vector6<f64> = (0..SHELL_EAS_COUNT).map(|m| geo.gp[q].g.column(m) * alpha[m]).sum();
+        let g = geo.enhanced(q);
+        let enhanced: Vector6<f64> = (0..SHELL_EAS_COUNT).map(|m| g.column(m) * alpha[m]).sum();
         a.points[q].2 + enhanced
     }))
 }

@@ -30,13 +30,33 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Systems with at least this many unknowns would be factorised on the run's threads
-/// (faer's rayon parallelism); smaller ones sequentially. No size was found where that
-/// pays: faer's parallel `LDLᵀ` took 1.3–2.4× the sequential time at 4e4, 1e5 and 4e5
-/// unknowns with 2, 4, 8 and 16 threads (16-core machine, 2026-11-26; also with 2 threads
-/// on the 2-core one; `cargo run --release --example factor_grain -- 400x50 1000x50
-/// 2000x100`), so factorisations are sequential at every size. A run's threads go to its
-/// element kernels.
+/// (faer's rayon parallelism) by the LU, the band and the multigrid set-up; smaller ones
+/// sequentially. No size was found where that pays: faer's parallel `LDLᵀ` took 1.3–2.4×
+/// the sequential time at 4e4, 1e5 and 4e5 unknowns of 2D meshes with 2, 4, 8 and 16
+/// threads (16-core machine, 2026-11-26; also with 2 threads on the 2-core one; `cargo run
+/// --release --example factor_grain -- 400x50 1000x50 2000x100`), so these are sequential
+/// at every size. The `LDLᵀ` decides by its flops instead ([`PARALLEL_FROM_FLOPS`]).
 pub const PARALLEL_FROM: usize = usize::MAX;
+
+/// `LDLᵀ` factorisations of at least this many flops (`Σ m_j²`, [`super::ldlt::factor_flops`])
+/// run on the run's threads; cheaper ones sequentially. What pays is the size of the dense
+/// fronts, not the number of unknowns: nested dissection of a 3D mesh ends in separators of
+/// thousands of unknowns, whose dense factorisations parallelise, while the fronts of 2D
+/// meshes stay small. Measured 2026-11-29 on the 2-core machine (`SCENE=scenes/hertz-3d.toml
+/// cargo run --release --example factor_grain -- 16x16x12 24x24x18 28x28x21 32x32x24`,
+/// factorisation and solve, 2 threads against one): 0.72× at 1.9e9 flops (10 540 unknowns),
+/// 1.05× at 2.0e10 (34 050), 1.14× at 4.8e10 (53 389), 1.44–1.60× at 1.07e11 (78 936); 2D
+/// meshes have small fronts and stay far below (`-- 1000x50 2000x100`: 6.4e8 flops at 1e5
+/// unknowns, 5.6e9 at 4e5, 0.66× and 0.58× on 2 threads).
+pub const PARALLEL_FROM_FLOPS: f64 = 3e10;
+
+/// What the lagged solves' cost model ([`super::lagged`]) takes a factorisation on the run's
+/// threads to gain over one on one thread: 1.44–1.60× measured with 2 threads at 1.07e11
+/// flops ([`PARALLEL_FROM_FLOPS`]), less for smaller factorisations, not measured with more
+/// threads. It makes the lagged solves' budget, hence which solves are lagged, depend on
+/// whether the factorisation is parallel: a run of such a model on one thread and on two
+/// may differ at round-off.
+pub const PARALLEL_FACTOR_SPEEDUP: f64 = 1.5;
 
 /// Numeric factorisations made, and the time spent in them (symbolic analyses and the
 /// multigrid set-up included) and in the substitutions.
@@ -73,6 +93,8 @@ pub struct LinearSolve {
     /// Threads the factorisations may use (the run's budget), and the size from which they do.
     threads: usize,
     parallel_from: usize,
+    /// `LDLᵀ` factorisations of at least these flops use the threads.
+    parallel_from_flops: f64,
     /// The run's team (the assembler's), handed to the iterative solver.
     team: Option<Arc<Team>>,
 }
@@ -102,15 +124,21 @@ impl LinearSolve {
             times: SolveTimes::default(),
             threads: 1,
             parallel_from: PARALLEL_FROM,
+            parallel_from_flops: PARALLEL_FROM_FLOPS,
             team: None,
         }
     }
 
     /// Let factorisations of systems with at least `from` unknowns use `threads` threads
-    /// (the run's budget; [`PARALLEL_FROM`] is the measured default for `from`).
+    /// (the run's budget; [`PARALLEL_FROM`] is the measured default for `from`; `LDLᵀ`
+    /// factorisations decide by [`PARALLEL_FROM_FLOPS`], except that `from = 0` makes
+    /// every factorisation parallel).
     pub fn set_threads(&mut self, threads: usize, from: usize) {
         self.threads = threads.max(1);
         self.parallel_from = from;
+        if from == 0 {
+            self.parallel_from_flops = 0.0;
+        }
     }
 
     /// Share the iterative solver's products and smoothing with the run's `team`.
@@ -121,9 +149,20 @@ impl LinearSolve {
         self.team = team;
     }
 
-    /// The parallelism of faer's factorisations of an `n`-unknown system.
+    /// The parallelism of faer's factorisations of an `n`-unknown system (the LU, the band,
+    /// the multigrid set-up).
     fn parallelism(&self, n: usize) -> Par {
         if self.threads < 2 || n < self.parallel_from {
+            Par::Seq
+        } else {
+            Par::rayon(self.threads)
+        }
+    }
+
+    /// The parallelism of an `LDLᵀ` factorisation and its substitutions, by its flops
+    /// ([`PARALLEL_FROM_FLOPS`]).
+    fn ldlt_parallelism(&self, flops: f64) -> Par {
+        if self.threads < 2 || flops < self.parallel_from_flops {
             Par::Seq
         } else {
             Par::rayon(self.threads)
@@ -206,7 +245,7 @@ impl LinearSolve {
             }
         } else if let Some(plan) = self.band.as_mut() {
             factorize_and_solve(plan, a, b, par, &mut self.times)?;
-        } else if !self.solve_symmetric(a, b, par) {
+        } else if !self.solve_symmetric(a, b) {
             self.solve_lu(a, b, par)?;
         }
         if b.iter().any(|v| !v.is_finite()) {
@@ -252,14 +291,15 @@ impl LinearSolve {
     /// Solve with `LDLᵀ` when the setting allows it and the pattern's first values were
     /// symmetric; returns whether it did (`b` is untouched when not). A failure retires the
     /// plan for the rest of the pattern's life.
-    fn solve_symmetric(&mut self, a: &SparseMatrix, b: &mut [f64], par: Par) -> bool {
+    fn solve_symmetric(&mut self, a: &SparseMatrix, b: &mut [f64]) -> bool {
         if !matches!(self.solver, LinearSolver::Auto | LinearSolver::General) {
             return false;
         }
         if !self.ldlt_decided {
             self.ldlt_decided = true;
             let started = Instant::now();
-            self.ldlt = LdltPlan::new(a.n, &a.col_ptr, &a.row_idx, &a.values, self.nodes.as_ref(), par);
+            let threads = self.ldlt_parallelism(f64::INFINITY);
+            self.ldlt = LdltPlan::new(a.n, &a.col_ptr, &a.row_idx, &a.values, self.nodes.as_ref(), threads);
             self.times.factor_time += started.elapsed();
             if let Some(plan) = &self.ldlt {
                 self.symbolic_factorizations += 1;
@@ -269,16 +309,27 @@ impl LinearSolve {
                 self.ldlt_stats.flops = plan.flops;
             }
         }
+        let Some(flops) = self.ldlt.as_ref().map(|p| p.flops.0) else {
+            return false;
+        };
+        let par = self.ldlt_parallelism(flops);
         let Some(plan) = self.ldlt.as_mut() else {
             return false;
         };
         // only `auto` reuses factors: `general` is the reference that factorises every tangent
         if self.solver == LinearSolver::Auto && self.lagged.is_none() {
-            self.lagged = Some(LaggedSolve::new(a.n, plan.flops.0, plan.factor_nnz(), a.nnz()));
+            // a factorisation on the threads costs fewer substitutions (which stay on one)
+            let speedup = if matches!(par, Par::Seq) {
+                1.0
+            } else {
+                PARALLEL_FACTOR_SPEEDUP
+            };
+            let flops = plan.flops.0 / speedup;
+            self.lagged = Some(LaggedSolve::new(a.n, flops, plan.factor_nnz(), a.nnz()));
         }
         if let Some(lagged) = self.lagged.as_mut().filter(|l| plan.factored() && l.worth_trying()) {
             let started = Instant::now();
-            let solved = lagged.solve(plan, a, b, par);
+            let solved = lagged.solve(plan, a, b, Par::Seq);
             self.times.solve_time += started.elapsed();
             if solved {
                 return true;
