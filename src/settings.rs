@@ -92,9 +92,11 @@ pub struct NewtonSettings {
     pub linear_solver: LinearSolver,
     /// Threads this run may use, the solver's own included (0: the cores this process may
     /// use, see [`crate::threads::available_cores`]). The element kernels use them where
-    /// they are measured to pay, the factorisations above a measured size; the results do
-    /// not depend on it. `contrail run --threads` sets it; `contrail sweep --jobs` and
-    /// `contrail serve --workers` divide the machine among their runs.
+    /// they are measured to pay, and so do `LDLᵀ` factorisations of at least 3·10¹⁰ flops
+    /// (3D meshes of ~5·10⁴ unknowns and more); the results do not depend on it, except on
+    /// such models, which may differ at round-off. `contrail run --threads` sets it;
+    /// `contrail sweep --jobs` and `contrail serve --workers` divide the machine among
+    /// their runs.
     pub threads: usize,
     /// Assemble an iterate expected to converge without the tangent (a wrong guess assembles
     /// it again with it; `solver::newton`, `expects_convergence`). The iterations and the

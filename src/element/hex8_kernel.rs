@@ -123,6 +123,21 @@ struct Wanted {
     k: bool,
 }
 
+/// `out += aᵀ b` on the upper triangle of the square `out` (`a`, `b`: `R × C`).
+#[inline]
+fn add_upper_tr_mul<const R: usize, const C: usize>(
+    out: &mut SMatrix<f64, C, C>,
+    a: &SMatrix<f64, R, C>,
+    b: &SMatrix<f64, R, C>,
+) {
+    for j in 0..C {
+        let bj = b.column(j);
+        for i in 0..=j {
+            out[(i, j)] += a.column(i).dot(&bj);
+        }
+    }
+}
+
 /// Copy the upper triangle of a square matrix onto its lower one.
 fn mirror_upper<const N: usize>(m: &mut SMatrix<f64, N, N>) {
     for j in 0..N {
@@ -174,7 +189,7 @@ fn gauss_pass<const N: usize>(
         t.energy += material.energy_3d(&e)? * dv;
         t.ru += p.b.tr_mul(&s) * dv;
         if want_k {
-            add_material_stiffness(&mut t.kuu, p.b, &d, dv);
+            add_upper_tr_mul(&mut t.kuu, p.b, &((d * p.b) * dv));
             (el.geometric)(q, &s, dv, &mut t.kuu);
         }
     }
@@ -190,15 +205,6 @@ fn gauss_pass<const N: usize>(
         mirror_upper(&mut t.kuu);
     }
     Ok(())
-}
-
-/// `K_uu += Bᵀ D B dv` (in full; [`gauss_pass`] mirrors the upper triangle at its end), as
-/// `(Bᵀ D) (Bᵀ)ᵀ`: products whose inner loops run down columns of 24 (vectorised), where
-/// entry-by-entry dot products of length 6 would not be.
-fn add_material_stiffness(kuu: &mut Mat24, b: &SMatrix<f64, 6, 24>, d: &Matrix6<f64>, dv: f64) {
-    let bt = b.transpose();
-    let btd = bt * d;
-    kuu.gemm(dv, &btd, b, 1.0);
 }
 
 /// One Gauss point's `R_α`, `K_αα` (upper triangle) and, with `full`, `K_uα`, from its
@@ -443,9 +449,10 @@ fn condense<const N: usize>(t: &mut Sums<N>, factor: &KaaFactor<N>, want_k: bool
                 .expect("a Cholesky factor has a nonzero diagonal");
             t.ru -= y.tr_mul(&z);
             if want_k {
-                // `Yᵀ Y` entry by entry sums the same products in the same order for
-                // `(i, j)` and `(j, i)`: the condensed tangent stays exactly symmetric
-                t.kuu.gemm(-1.0, &y.transpose(), &y, 1.0);
+                let mut yty = Mat24::zeros();
+                add_upper_tr_mul(&mut yty, &y, &y);
+                mirror_upper(&mut yty);
+                t.kuu -= yty;
             }
         }
         KaaFactor::Inverse(inv) => {

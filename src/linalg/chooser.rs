@@ -13,7 +13,8 @@
 //! pivot, a large backward error) retires the plan for the rest of its pattern and the LU
 //! solves; a failed iterative solve is repeated by the LU (the next solve tries the
 //! iterative solver again). faer's factorisations run sequentially below
-//! [`PARALLEL_FROM`] unknowns (measured: every size) and on the run's threads above.
+//! [`PARALLEL_FROM`] unknowns (measured: every size) and on the run's threads above; an
+//! `LDLᵀ` from [`PARALLEL_FROM_FLOPS`] flops on.
 
 use super::aggregation::MeshNodes;
 use super::band_plan::BandPlan;
