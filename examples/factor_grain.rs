@@ -33,38 +33,36 @@ fn main() {
 fn probe<S: Dim>(arg: &str, model: &Model<S>) {
     let reps: usize = std::env::var("REPS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);
     let cores = contrail::threads::available_cores();
-    {
-        let mut asm = Assembler::new(model);
-        asm.linear.set_solver(LinearSolver::General);
-        let mut st = TrialState::new(model);
-        for (i, u) in st.u.iter_mut().enumerate() {
-            *u = 1e-7 * (i as f64 * 0.37).sin();
+    let mut asm = Assembler::new(model);
+    asm.linear.set_solver(LinearSolver::General);
+    let mut st = TrialState::new(model);
+    for (i, u) in st.u.iter_mut().enumerate() {
+        *u = 1e-7 * (i as f64 * 0.37).sin();
+    }
+    for p in &model.prescribed {
+        st.u[p.dof] = 0.0;
+    }
+    asm.assemble(model, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
+        .unwrap();
+    let n = asm.dofs.n_free;
+    let mut base = None;
+    let mut threads = 1;
+    while threads <= cores {
+        asm.linear.set_threads(threads, 0);
+        let mut best = f64::INFINITY;
+        for _ in 0..reps {
+            let mut b = vec![1.0; n];
+            let t0 = Instant::now();
+            asm.solve(&mut b).unwrap();
+            best = best.min(t0.elapsed().as_secs_f64());
         }
-        for p in &model.prescribed {
-            st.u[p.dof] = 0.0;
-        }
-        asm.assemble(model, &st.u, 0.5, &mut st.alphas, &mut st.contact, true)
-            .unwrap();
-        let n = asm.dofs.n_free;
-        let mut base = None;
-        let mut threads = 1;
-        while threads <= cores {
-            asm.linear.set_threads(threads, 0);
-            let mut best = f64::INFINITY;
-            for _ in 0..reps {
-                let mut b = vec![1.0; n];
-                let t0 = Instant::now();
-                asm.solve(&mut b).unwrap();
-                best = best.min(t0.elapsed().as_secs_f64());
-            }
-            let one = *base.get_or_insert(best);
-            println!(
-                "{arg}: {n} unknowns, {:.2e} flops, {threads} threads: {:.2} ms (x{:.2} against one thread)",
-                asm.linear.ldlt_stats().flops.0,
-                best * 1e3,
-                one / best
-            );
-            threads *= 2;
-        }
+        let one = *base.get_or_insert(best);
+        println!(
+            "{arg}: {n} unknowns, {:.2e} flops, {threads} threads: {:.2} ms (x{:.2} against one thread)",
+            asm.linear.ldlt_stats().flops.0,
+            best * 1e3,
+            one / best
+        );
+        threads *= 2;
     }
 }
