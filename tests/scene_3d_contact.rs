@@ -295,7 +295,7 @@ plane = { point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, -1.0] }
         &["`allow_initial_penetration = true`"],
     );
     refused(&press("two_pass = true"), &["`two_pass`", "deformable"]);
-    // friction on a plane builds; on a sphere it is refused
+    // friction on a plane and on a cylinder builds; on a sphere it is refused
     assert!(build(&press("mu = 0.2\neps_t = 100.0")).is_ok());
     let sphere = r#"
 [[rigid]]
@@ -311,7 +311,8 @@ sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }
         "sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }",
         "cylinder = { point = [0.5, 0.5, 1.5], axis = [1.0, 0.0, 0.0], radius = 0.5 }",
     );
-    refused(&on_cylinder, &["`mu`", "friction on a rigid cylinder"]);
+    // on a cylinder it builds: convective coordinates round and along its axis
+    assert!(build(&on_cylinder).is_ok());
     assert!(build(&on_cylinder.replace("mu = 0.2", "mu = 0.0")).is_ok());
     // a rigid point as a slave
     let point_slave = format!(

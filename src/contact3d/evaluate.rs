@@ -3,15 +3,17 @@
 //! facet it is on now, and its kernel evaluated into local arrays ([`PointLocal`]) with the
 //! global DOFs they belong to — the system ([`super::system`]) assembles them.
 
+use super::cylinder::CylinderChart;
 use super::decision::SurfaceRule;
 use super::locate::locate;
-use super::master::{facet_point, plane_facet, round_point, PointLocal, Round};
+use super::master::{cylinder_point, facet_point, plane_facet, round_point, PointLocal, Round};
 use super::nagata::FacetBends;
 use super::point::{PointEval, DOFS};
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD, FREE_BORDER_ROUNDOFF};
 use super::surface::Facet;
 use super::system::{Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
 use super::transfer::{transfer, trial_against_continuous, Scheme};
+use super::vec3::norm;
 use crate::contact::law::ContactState;
 use crate::model::{RigidSurfaceShape, SurfaceMaster, SurfacePair};
 
@@ -145,8 +147,9 @@ fn on_facets(
     out
 }
 
-/// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel)
-/// or a rigid sphere; evaluated on the slave's 3 DOFs.
+/// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel),
+/// a rigid cylinder (the facet kernel on the cylinder's chart) or a rigid sphere; evaluated
+/// on the slave's 3 DOFs.
 fn on_rigid(
     cfg: &SurfaceConfig,
     (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
@@ -161,12 +164,8 @@ fn on_rigid(
     let law = pair.law_at(is, cfg.t);
     let mut out = Evaluated::unpaired();
     let offset = rigid.offset(cfg.t);
-    // a sphere or a cylinder about the slave's origin, moved; the scale of its coordinates
-    let round = |centre: [f64; 3], axis, radius, local: &mut PointLocal| {
-        let centre: [f64; 3] = std::array::from_fn(|c| (centre[c] - origin[c]) + offset[c]);
-        let e = round_point(&law, x_s, Round { centre, axis, radius }, decider, local);
-        (e, crate::contact3d::vec3::norm(centre) + radius)
-    };
+    // a sphere or a cylinder about the slave's origin, moved
+    let about = |p: [f64; 3]| -> [f64; 3] { std::array::from_fn(|c| (p[c] - origin[c]) + offset[c]) };
     let (e, scale) = match rigid.shape {
         RigidSurfaceShape::Plane { point, normal } => {
             let facet = plane_facet(point, normal, plane_half, offset, origin);
@@ -178,8 +177,31 @@ fn on_rigid(
             local.keep_slave();
             (e, plane_half)
         }
-        RigidSurfaceShape::Sphere { centre, radius } => round(centre, None, radius, local),
-        RigidSurfaceShape::Cylinder { point, axis, radius } => round(point, Some(axis), radius, local),
+        RigidSurfaceShape::Sphere { centre, radius } => {
+            let centre = about(centre);
+            let e = round_point(
+                &law,
+                x_s,
+                Round {
+                    centre,
+                    axis: None,
+                    radius,
+                },
+                decider,
+                local,
+            );
+            (e, norm(centre) + radius)
+        }
+        RigidSurfaceShape::Cylinder { point, axis, radius } => {
+            let centre = about(point);
+            let chart = CylinderChart { centre, axis, radius };
+            let history = hist.history.filter(|_| hist.closed);
+            out.now.frictional = history.is_some() && law.mu > 0.0;
+            let Ok(e) = cylinder_point(law, x_s, chart, history, decider, local) else {
+                return out;
+            };
+            (e, norm(centre) + radius)
+        }
     };
     if e.projection.gap > pair.search_radius {
         return out;

@@ -1,13 +1,15 @@
 //! One 3D contact point against its master, in the form the system assembles: the local
 //! problem of a slave node and a facet of a deformable face (15 DOFs, [`super::point`]), of a
 //! slave node and a rigid plane (the plane as a fixed bilinear facet, the slave's 3 DOFs
-//! kept), or of a slave node and a rigid sphere or cylinder (closed form, 3 DOFs,
-//! frictionless).
+//! kept), of a slave node and a rigid cylinder (the facet kernel on the cylinder's convective
+//! coordinates, [`super::cylinder`]; the slave's 3 DOFs kept), or of a slave node and a rigid
+//! sphere (closed form, 3 DOFs, frictionless).
 //!
 //! Every position is taken about the slave's reference position (its own origin), as in 2D:
 //! gaps and convective coordinates are differences of nearby points, computed from the same
 //! digits wherever the model sits.
 
+use super::cylinder::CylinderChart;
 use super::decision::{self, SurfaceRule};
 use super::point::{History, PointEval, PointProblem, SurfaceLinearization, DOFS, TOUCH};
 use super::projection::{Location, Projection, ProjectionError};
@@ -176,6 +178,29 @@ pub fn facet_point(
     problem.warm = warm;
     out.len = DOFS;
     problem.local(&mut out.r, &mut out.r_eq, &mut out.k, &mut out.lin)
+}
+
+/// Evaluate the kernel of a slave `x_s` (about its origin) against the rigid cylinder
+/// `chart` ([`super::cylinder`]: convective coordinates on it, so with friction), the history
+/// on the cylinder, the state decided by `rule` (`warm`: by the force unknowns alone); the
+/// slave's 3 DOFs of the local arrays into `out`.
+pub fn cylinder_point(
+    law: ContactLaw,
+    x_s: [f64; 3],
+    chart: CylinderChart,
+    history: Option<History>,
+    (rule, warm): (SurfaceRule, bool),
+    out: &mut PointLocal,
+) -> Result<PointEval<f64>, ProjectionError> {
+    let mut problem = PointProblem::new(law, [x_s, [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]]);
+    problem.cylinder = Some(chart);
+    problem.history = history;
+    problem.rule = rule;
+    problem.warm = warm;
+    out.len = DOFS;
+    let e = problem.local(&mut out.r, &mut out.r_eq, &mut out.k, &mut out.lin)?;
+    out.keep_slave();
+    Ok(e)
 }
 
 #[cfg(test)]

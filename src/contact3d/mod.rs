@@ -11,7 +11,8 @@
 //!   point's force unknowns, and the slip force of its condensed step;
 //! - [`transfer`]: the friction history carried across a facet edge (straightforward,
 //!   continuous by parallel translation, path length);
-//! - [`master`]: a point against a facet, a rigid plane or a rigid sphere, its local arrays;
+//! - [`cylinder`]: convective coordinates on a rigid cylinder (friction on it);
+//! - [`master`]: a point against a facet, a rigid plane, cylinder or sphere, its local arrays;
 //! - [`evaluate`]: one slave paired, its history carried, its kernel evaluated;
 //! - [`search`]: the facet grid of a pair;
 //! - [`system`]: the state of every 3D pair and point, evaluated into the assembly;
@@ -20,6 +21,7 @@
 //! Formulas: Konyukhov & Schweizerhof, Comput Mech 35 (2005) 190–213 (covariant description
 //! on surfaces), the seed (continuous transfer, eqs. 1–4), notes `contact-3d.md`.
 
+pub mod cylinder;
 pub mod decision;
 pub mod evaluate;
 pub mod locate;

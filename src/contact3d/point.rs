@@ -30,10 +30,11 @@
 //! `−r_s = N n + T_α ∇_s ξ^α` (`= N n + T_α ρ^α` on a flat facet): `T` acts on the slave.
 //! The history is data (not differentiated).
 
+use super::cylinder::CylinderChart;
 use super::decision::{self, SurfaceRule};
 use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
 use super::surface::{Bend, Facet, FacetPoint};
-use super::variations::variations;
+use super::variations::{variations, Variations};
 use super::vec3::{Scalar, V3};
 use crate::contact::law::ContactState;
 use crate::model::ContactLaw;
@@ -75,6 +76,9 @@ pub struct PointProblem {
     pub bend: Option<Bend>,
     /// `None`: the point was open at the last converged increment.
     pub history: Option<History>,
+    /// The master is this rigid cylinder ([`super::cylinder`]; slots 1–4 unused) instead of
+    /// the facet.
+    pub cylinder: Option<CylinderChart>,
     /// Newton's settings of the projection (its start is replaced by `ξ_(n)` when there is
     /// a history).
     pub projection: ProjectionOptions,
@@ -121,6 +125,7 @@ impl PointProblem {
             x,
             bend: None,
             history: None,
+            cylinder: None,
             projection: ProjectionOptions::default(),
             rule: SurfaceRule::Penalty,
             warm: false,
@@ -130,15 +135,20 @@ impl PointProblem {
     /// Projection, normal force, trial and returned traction for node positions `q`, the
     /// state decided by [`Self::rule`] ([`super::decision`]).
     pub fn evaluate<S: Scalar>(&self, q: &[V3<S>; NODES]) -> Result<PointEval<S>, ProjectionError> {
-        let facet = Facet {
-            x: [q[1], q[2], q[3], q[4]],
-            bend: self.bend,
+        let (projection, size) = match &self.cylinder {
+            Some(c) => (c.project(q[0], self.history.map(|h| h.xi[0]))?, c.radius),
+            None => {
+                let facet = Facet {
+                    x: [q[1], q[2], q[3], q[4]],
+                    bend: self.bend,
+                };
+                let mut opts = self.projection;
+                if let Some(h) = self.history {
+                    opts.start = h.xi.map(|v| v.clamp(-0.5 * XI_BOX, 0.5 * XI_BOX));
+                }
+                (project_with(&facet, q[0], &opts)?, facet.size())
+            }
         };
-        let mut opts = self.projection;
-        if let Some(h) = self.history {
-            opts.start = h.xi.map(|v| v.clamp(-0.5 * XI_BOX, 0.5 * XI_BOX));
-        }
-        let projection = project_with(&facet, q[0], &opts)?;
         let zero = S::from(0.0);
         let n_eps = projection.gap * (-self.law.eps_n);
         let mut eval = PointEval {
@@ -157,7 +167,7 @@ impl PointProblem {
         // touching within the geometry's precision counts as closed (the resting side of
         // the normal kink): a point at zero gap then carries the penalty's stiffness into
         // the correction, and a correction that lifts it opens it at the next iterate
-        let touch = self.law.eps_n * TOUCH * facet.size();
+        let touch = self.law.eps_n * TOUCH * size;
         let (closed, n_hat) = decision::normal(&deciding, n_eps.re(), touch);
         let forces = (n_eps.re(), n_hat);
         if !closed {
@@ -229,7 +239,7 @@ impl PointProblem {
         let e = self.evaluate_f64()?;
         r.fill(0.0);
         if e.state != ContactState::Open {
-            let var = variations(&e.projection, self.bend.as_ref());
+            let var = self.variations(&e.projection);
             let (n, t) = (e.normal_force, e.traction);
             for (i, ri) in r.iter_mut().enumerate() {
                 *ri = -n * var.gap[i] - t[0] * var.xi[0][i] - t[1] * var.xi[1][i];
@@ -282,7 +292,7 @@ impl PointProblem {
             std::array::from_fn(|j| g[j])
         };
         // ∇ζ, ∇ξ^α in closed form; their dual parts are ∇²ζ, ∇²ξ^α
-        let var = variations(&e.projection, self.bend.as_ref());
+        let var = self.variations(&e.projection);
         let gz: [f64; DOFS] = var.gap.map(|s| s.re);
         let gx: [[f64; DOFS]; 2] = var.xi.map(|g| g.map(|s| s.re));
         let (n_bar, t_bar) = match self.rule.forces() {
@@ -332,6 +342,19 @@ impl PointProblem {
             lin.d_tangential[c] = grad(v);
         }
         Ok(real_parts(&e))
+    }
+
+    /// `∇ζ`, `∇ξ^α` of the closest point `p` ([`variations`]); against a rigid cylinder only
+    /// the slave's slot, the master's nodes being unused.
+    fn variations<S: Scalar>(&self, p: &Projection<S>) -> Variations<S> {
+        let mut var = variations(p, self.bend.as_ref());
+        if self.cylinder.is_some() {
+            let zero = S::from(0.0);
+            for g in std::iter::once(&mut var.gap).chain(&mut var.xi) {
+                g[3..].fill(zero);
+            }
+        }
+        var
     }
 
     /// The history to store when this evaluation is the converged state of the increment:

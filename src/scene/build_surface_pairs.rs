@@ -148,16 +148,11 @@ pub(super) fn add_surface_contacts(
         let master = surface_master(cx, m, c, rigid)?;
         let law = contact_law(cx, c)?;
         if let (SurfaceMaster::Rigid(r), true) = (&master, law.mu > 0.0) {
-            let round = match r.shape {
-                RigidSurfaceShape::Sphere { .. } => Some("sphere"),
-                RigidSurfaceShape::Cylinder { .. } => Some("cylinder"),
-                RigidSurfaceShape::Plane { .. } => None,
-            };
-            if let Some(kind) = round {
+            if let RigidSurfaceShape::Sphere { .. } = r.shape {
                 return Err(cx.err(
                     &c.name,
-                    format!("contact `{}`: `mu` = {} against the rigid {kind} `{}`: friction on a rigid {kind} needs convective coordinates on it, not built", c.name, c.mu, r.name),
-                    "set mu = 0 (frictionless) against a sphere or a cylinder, or press on a rigid plane or a deformable face",
+                    format!("contact `{}`: `mu` = {} against the rigid sphere `{}`: friction on a rigid sphere needs convective coordinates on it, not built", c.name, c.mu, r.name),
+                    "set mu = 0 (frictionless) against a sphere, or press on a rigid plane, a rigid cylinder or a deformable face",
                 ));
             }
         }
