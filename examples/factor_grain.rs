@@ -48,7 +48,8 @@ fn probe<S: Dim>(arg: &str, model: &Model<S>) {
     let mut base = None;
     let mut threads = 1;
     while threads <= cores {
-        asm.linear.set_threads(threads, 0);
+        asm.linear.set_threads(threads);
+        asm.linear.set_parallel_thresholds(0, 0.0);
         let mut best = f64::INFINITY;
         for _ in 0..reps {
             let mut b = vec![1.0; n];

@@ -29,15 +29,7 @@ const SHOWN: &str = "document.querySelector('#model-card') ? document.querySelec
 fn the_run_page_plays_the_model_from_the_service() {
     let dir = TempDir::new("svc-web-model");
     let srv = Server::start(&dir.0.join("data"), &["--workers", "2", "--token", TOKEN]);
-    let (s, run) = srv.post(
-        "/api/runs",
-        &json!({ "scene": "strip-channel", "set": SETS, "positions_every": EVERY }),
-    );
-    assert_eq!(s, 201, "{run}");
-    let id = run["id"].as_str().unwrap().to_string();
-    let run = srv.wait_ended(&id, 300);
-    assert_eq!(run["status"], "completed", "{run}");
-    let rec = Recording::open(&srv.data.join(format!("runs/{id}.mcap"))).unwrap();
+    let (id, rec) = srv.solved(("strip-channel", &SETS, EVERY), 300);
     the_endpoints_are_the_recording(&srv, &id, &rec);
     a_running_run_is_read_from_its_partial_recording(&srv);
     let Some(chrome) = chromium() else { return };

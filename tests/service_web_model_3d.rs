@@ -30,15 +30,7 @@ const SHOWN: &str = "document.querySelector('#model-card') ? document.querySelec
 fn the_run_page_plays_a_3d_model_from_the_service() {
     let dir = TempDir::new("svc-web-model-3d");
     let srv = Server::start(&dir.0.join("data"), &["--workers", "1", "--token", TOKEN]);
-    let (s, run) = srv.post(
-        "/api/runs",
-        &json!({ "scene": "hertz-3d", "set": SETS, "positions_every": EVERY }),
-    );
-    assert_eq!(s, 201, "{run}");
-    let id = run["id"].as_str().unwrap().to_string();
-    let run = srv.wait_ended(&id, 300);
-    assert_eq!(run["status"], "completed", "{run}");
-    let rec = Recording::open(&srv.data.join(format!("runs/{id}.mcap"))).unwrap();
+    let (id, rec) = srv.solved(("hertz-3d", &SETS, EVERY), 300);
     the_model_is_the_recording(&srv, &id, &rec);
     the_increments_are_the_recording(&srv, &id, &rec);
     let Some(chrome) = chromium() else { return };

@@ -130,16 +130,18 @@ impl LinearSolve {
         }
     }
 
-    /// Let factorisations of systems with at least `from` unknowns use `threads` threads
-    /// (the run's budget; [`PARALLEL_FROM`] is the measured default for `from`; `LDLᵀ`
-    /// factorisations decide by [`PARALLEL_FROM_FLOPS`], except that `from = 0` makes
-    /// every factorisation parallel).
-    pub fn set_threads(&mut self, threads: usize, from: usize) {
+    /// Let factorisations use `threads` threads (the run's budget) where they pay: from
+    /// [`PARALLEL_FROM`] unknowns, an `LDLᵀ` from [`PARALLEL_FROM_FLOPS`] flops.
+    pub fn set_threads(&mut self, threads: usize) {
         self.threads = threads.max(1);
-        self.parallel_from = from;
-        if from == 0 {
-            self.parallel_from_flops = 0.0;
-        }
+    }
+
+    /// Replace the measured thresholds: factorisations of at least `unknowns` unknowns, and
+    /// `LDLᵀ` factorisations of at least `flops` flops, use the threads (a probe of what
+    /// parallelism gains sets both to zero).
+    pub fn set_parallel_thresholds(&mut self, unknowns: usize, flops: f64) {
+        self.parallel_from = unknowns;
+        self.parallel_from_flops = flops;
     }
 
     /// Share the iterative solver's products and smoothing with the run's `team`.

@@ -127,7 +127,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
         asm.linear.set_solver(settings.newton.linear_solver);
         let threads = crate::threads::resolve(settings.newton.threads);
         asm.set_threads(threads, model.elements.len());
-        asm.linear.set_threads(threads, crate::linalg::chooser::PARALLEL_FROM);
+        asm.linear.set_threads(threads);
         let mut committed = TrialState::new(model);
         let penalty = settings.newton.active_set == crate::settings::ActiveSet::Penalty;
         committed.contact.set_penalty_weights(model.plane(), penalty);

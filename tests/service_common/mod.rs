@@ -134,6 +134,24 @@ impl Server {
         )
     }
 
+    /// Submit `scene` with the overrides `set`, node positions every `every`-th increment;
+    /// wait until it completes (within `secs`) and open its recording: its id and recording.
+    pub fn solved(
+        &self,
+        (scene, set, every): (&str, &[&str], usize),
+        secs: u64,
+    ) -> (String, contrail::analysis::recording::Recording) {
+        let body = serde_json::json!({ "scene": scene, "set": set, "positions_every": every });
+        let (s, run) = self.post("/api/runs", &body);
+        assert_eq!(s, 201, "{run}");
+        let id = run["id"].as_str().unwrap().to_string();
+        let run = self.wait_ended(&id, secs);
+        assert_eq!(run["status"], "completed", "{run}");
+        let path = self.data.join(format!("runs/{id}.mcap"));
+        let rec = contrail::analysis::recording::Recording::open(&path).unwrap();
+        (id, rec)
+    }
+
     /// `contrail ARGS... --server URL` with its output and exit code.
     pub fn client(&self, args: &[&str]) -> (i32, String, String) {
         let out = Command::new(BIN)
