@@ -295,7 +295,7 @@ plane = { point = [0.0, 0.0, 1.0], normal = [0.0, 0.0, -1.0] }
         &["`allow_initial_penetration = true`"],
     );
     refused(&press("two_pass = true"), &["`two_pass`", "deformable"]);
-    // friction on a plane and on a cylinder builds; on a sphere it is refused
+    // friction on a plane, a sphere and a cylinder builds (each has convective coordinates)
     assert!(build(&press("mu = 0.2\neps_t = 100.0")).is_ok());
     let sphere = r#"
 [[rigid]]
@@ -303,15 +303,11 @@ name = "tool"
 sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }
 "#;
     let on_sphere = format!("{BODIES}{sphere}{PRESS}mu = 0.2\neps_t = 100.0\n");
-    refused(
-        &on_sphere,
-        &["`mu`", "friction on a rigid sphere needs convective coordinates"],
-    );
+    assert!(build(&on_sphere).is_ok());
     let on_cylinder = on_sphere.replace(
         "sphere = { centre = [0.5, 0.5, 1.5], radius = 0.5 }",
         "cylinder = { point = [0.5, 0.5, 1.5], axis = [1.0, 0.0, 0.0], radius = 0.5 }",
     );
-    // on a cylinder it builds: convective coordinates round and along its axis
     assert!(build(&on_cylinder).is_ok());
     assert!(build(&on_cylinder.replace("mu = 0.2", "mu = 0.0")).is_ok());
     // a rigid point as a slave

@@ -6,10 +6,12 @@
 use super::cylinder::CylinderChart;
 use super::decision::SurfaceRule;
 use super::locate::locate;
-use super::master::{cylinder_point, facet_point, plane_facet, round_point, PointLocal, Round};
+use super::master::{facet_point, plane_facet, rigid_point, PointLocal};
 use super::nagata::FacetBends;
+use super::point::RigidChart;
 use super::point::{PointEval, DOFS};
 use super::search::{past_free_border, FacetGrid, FREE_BORDER_HOLD, FREE_BORDER_ROUNDOFF};
+use super::sphere::SphereChart;
 use super::surface::Facet;
 use super::system::{Carried, SurfaceConfig, SurfaceHistory, SurfaceNow};
 use super::transfer::{transfer, trial_against_continuous, Scheme};
@@ -148,8 +150,7 @@ fn on_facets(
 }
 
 /// Slave `is` against a rigid plane (a fixed facet: the slave's block of the facet kernel),
-/// a rigid cylinder (the facet kernel on the cylinder's chart) or a rigid sphere; evaluated
-/// on the slave's 3 DOFs.
+/// cylinder or sphere (the facet kernel on their charts); evaluated on the slave's 3 DOFs.
 fn on_rigid(
     cfg: &SurfaceConfig,
     (pair, is, hist): (&SurfacePair, usize, &SurfaceHistory),
@@ -166,42 +167,36 @@ fn on_rigid(
     let offset = rigid.offset(cfg.t);
     // a sphere or a cylinder about the slave's origin, moved
     let about = |p: [f64; 3]| -> [f64; 3] { std::array::from_fn(|c| (p[c] - origin[c]) + offset[c]) };
-    let (e, scale) = match rigid.shape {
+    let history = hist.history.filter(|_| hist.closed);
+    let frictional = history.is_some() && law.mu > 0.0;
+    // the kernel on the chart of a sphere or a cylinder, and the scale of its coordinates
+    let on_chart = |chart: RigidChart, local: &mut PointLocal| {
+        let e = rigid_point(law, x_s, chart, history, decider, local).ok()?;
+        let (centre, radius) = match chart {
+            RigidChart::Sphere(c) => (c.centre, c.radius),
+            RigidChart::Cylinder(c) => (c.centre, c.radius),
+        };
+        Some((e, norm(centre) + radius))
+    };
+    out.now.frictional = frictional;
+    let evaluated = match rigid.shape {
         RigidSurfaceShape::Plane { point, normal } => {
             let facet = plane_facet(point, normal, plane_half, offset, origin);
-            let history = hist.history.filter(|_| hist.closed);
-            out.now.frictional = history.is_some() && law.mu > 0.0;
-            let Ok(e) = facet_point(law, (x_s, facet, None), history, decider, local) else {
-                return out;
-            };
+            let e = facet_point(law, (x_s, facet, None), history, decider, local).ok();
             local.keep_slave();
-            (e, plane_half)
+            e.map(|e| (e, plane_half))
         }
         RigidSurfaceShape::Sphere { centre, radius } => {
-            let centre = about(centre);
-            let e = round_point(
-                &law,
-                x_s,
-                Round {
-                    centre,
-                    axis: None,
-                    radius,
-                },
-                decider,
-                local,
-            );
-            (e, norm(centre) + radius)
+            let chart = SphereChart::for_slave(about(centre), radius, centre, origin);
+            on_chart(RigidChart::Sphere(chart), local)
         }
         RigidSurfaceShape::Cylinder { point, axis, radius } => {
             let centre = about(point);
-            let chart = CylinderChart { centre, axis, radius };
-            let history = hist.history.filter(|_| hist.closed);
-            out.now.frictional = history.is_some() && law.mu > 0.0;
-            let Ok(e) = cylinder_point(law, x_s, chart, history, decider, local) else {
-                return out;
-            };
-            (e, norm(centre) + radius)
+            on_chart(RigidChart::Cylinder(CylinderChart { centre, axis, radius }), local)
         }
+    };
+    let Some((e, scale)) = evaluated else {
+        return out;
     };
     if e.projection.gap > pair.search_radius {
         return out;

@@ -11,7 +11,8 @@
 //!   point's force unknowns, and the slip force of its condensed step;
 //! - [`transfer`]: the friction history carried across a facet edge (straightforward,
 //!   continuous by parallel translation, path length);
-//! - [`cylinder`]: convective coordinates on a rigid cylinder (friction on it);
+//! - [`cylinder`], [`sphere`]: convective coordinates on a rigid cylinder and a rigid sphere
+//!   (friction on them);
 //! - [`master`]: a point against a facet, a rigid plane, cylinder or sphere, its local arrays;
 //! - [`evaluate`]: one slave paired, its history carried, its kernel evaluated;
 //! - [`search`]: the facet grid of a pair;
@@ -30,6 +31,7 @@ pub mod nagata;
 pub mod point;
 pub mod projection;
 pub mod search;
+pub mod sphere;
 pub mod surface;
 pub mod system;
 pub mod transfer;

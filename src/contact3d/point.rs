@@ -33,6 +33,7 @@
 use super::cylinder::CylinderChart;
 use super::decision::{self, SurfaceRule};
 use super::projection::{project_with, Projection, ProjectionError, ProjectionOptions, XI_BOX};
+use super::sphere::SphereChart;
 use super::surface::{Bend, Facet, FacetPoint};
 use super::variations::{variations, Variations};
 use super::vec3::{Scalar, V3};
@@ -55,6 +56,14 @@ pub const NODES: usize = 5;
 /// Local DOFs.
 pub const DOFS: usize = 3 * NODES;
 
+/// A rigid master with convective coordinates of its own: a cylinder ([`super::cylinder`])
+/// or a sphere ([`super::sphere`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RigidChart {
+    Cylinder(CylinderChart),
+    Sphere(SphereChart),
+}
+
 /// History of a point closed at the last converged increment, on the facet it is on now.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct History {
@@ -76,9 +85,9 @@ pub struct PointProblem {
     pub bend: Option<Bend>,
     /// `None`: the point was open at the last converged increment.
     pub history: Option<History>,
-    /// The master is this rigid cylinder ([`super::cylinder`]; slots 1–4 unused) instead of
-    /// the facet.
-    pub cylinder: Option<CylinderChart>,
+    /// The master is this rigid surface with its own convective coordinates (slots 1–4
+    /// unused) instead of the facet.
+    pub rigid: Option<RigidChart>,
     /// Newton's settings of the projection (its start is replaced by `ξ_(n)` when there is
     /// a history).
     pub projection: ProjectionOptions,
@@ -125,7 +134,7 @@ impl PointProblem {
             x,
             bend: None,
             history: None,
-            cylinder: None,
+            rigid: None,
             projection: ProjectionOptions::default(),
             rule: SurfaceRule::Penalty,
             warm: false,
@@ -135,8 +144,9 @@ impl PointProblem {
     /// Projection, normal force, trial and returned traction for node positions `q`, the
     /// state decided by [`Self::rule`] ([`super::decision`]).
     pub fn evaluate<S: Scalar>(&self, q: &[V3<S>; NODES]) -> Result<PointEval<S>, ProjectionError> {
-        let (projection, size) = match &self.cylinder {
-            Some(c) => (c.project(q[0], self.history.map(|h| h.xi[0]))?, c.radius),
+        let (projection, size) = match &self.rigid {
+            Some(RigidChart::Cylinder(c)) => (c.project(q[0], self.history.map(|h| h.xi[0]))?, c.radius),
+            Some(RigidChart::Sphere(c)) => (c.project(q[0])?, c.radius),
             None => {
                 let facet = Facet {
                     x: [q[1], q[2], q[3], q[4]],
@@ -344,11 +354,11 @@ impl PointProblem {
         Ok(real_parts(&e))
     }
 
-    /// `∇ζ`, `∇ξ^α` of the closest point `p` ([`variations`]); against a rigid cylinder only
+    /// `∇ζ`, `∇ξ^α` of the closest point `p` ([`variations`]); against a rigid surface only
     /// the slave's slot, the master's nodes being unused.
     fn variations<S: Scalar>(&self, p: &Projection<S>) -> Variations<S> {
         let mut var = variations(p, self.bend.as_ref());
-        if self.cylinder.is_some() {
+        if self.rigid.is_some() {
             let zero = S::from(0.0);
             for g in std::iter::once(&mut var.gap).chain(&mut var.xi) {
                 g[3..].fill(zero);

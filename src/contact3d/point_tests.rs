@@ -311,75 +311,89 @@ fn stick_then_slip_puts_the_traction_on_the_cone() {
     assert!(seen[0] && seen[1]);
 }
 
-/// Against a rigid cylinder ([`super::cylinder`], its axis tilted): the tangent equals
-/// central finite differences of the residual (≤ 1e-6 of max |K|) in every state, the
-/// master's slots stay zero, and the slave's force is `N n + T_α ∇_s ξ^α` with
-/// `∇_s ξ¹ = ρ_1 / (1 + ζ/R)`, `∇_s ξ² = ρ_2` (1e-12); in slip `|T| = μ N` (1e-12).
+/// Against a rigid cylinder (its axis tilted) and a rigid sphere, on their own convective
+/// coordinates ([`super::cylinder`], [`super::sphere`]): the tangent equals central finite
+/// differences of the residual (≤ 1e-6 of max |K|) in every state, the master's slots stay
+/// zero, and the slave's force is `N n + T_α ∇_s ξ^α` with
+/// `∇_s ξ^α = ρ_α / (a_αα − ζ h_αα)` (both charts are orthogonal: `a`, `h` diagonal; 1e-12);
+/// in slip `|T| = μ N` (1e-12).
 #[test]
-fn against_a_rigid_cylinder_the_tangent_matches_finite_differences() {
+fn against_a_rigid_cylinder_or_sphere_the_tangent_matches_finite_differences() {
     use super::cylinder::CylinderChart;
+    use super::point::RigidChart;
+    use super::sphere::SphereChart;
     let axis = [0.3, 1.0, 0.2];
-    let chart = CylinderChart {
-        centre: [0.1, -0.2, 1.0],
+    let centre = [0.1, -0.2, 1.0];
+    let cylinder = RigidChart::Cylinder(CylinderChart {
+        centre,
         axis: super::vec3::scale(axis, 1.0 / norm(axis)),
         radius: 0.8,
-    };
-    let on_cylinder = |d: f64, history: Option<History>, law: ContactLaw| {
-        let at = chart
-            .project(super::vec3::scale([0.4, 0.1, 0.2], 1.0), None)
-            .unwrap()
-            .point;
-        let slave = std::array::from_fn(|c| at.rho[c] + d * at.normal[c]);
-        let history = history.map(|h| History {
-            xi: [at.xi[0] + h.xi[0], at.xi[1] + h.xi[1]],
-            ..h
-        });
-        PointProblem {
-            history,
-            cylinder: Some(chart),
-            ..PointProblem::new(law, [slave, [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]])
-        }
-    };
-    // histories relative to the slave's closest point
-    let stick = History {
-        xi: [-0.001, 0.001],
-        traction: [0.5, -0.3],
-    };
-    let slip = History {
-        xi: [-0.1, -0.05],
-        traction: [5.0, 3.0],
-    };
-    let frictionless = ContactLaw { mu: 0.0, ..LAW };
-    let cases = [
-        ("open", on_cylinder(0.01, Some(stick), LAW), ContactState::Open),
-        ("first touch", on_cylinder(-0.01, None, LAW), ContactState::Stick),
-        (
-            "frictionless",
-            on_cylinder(-0.01, Some(stick), frictionless),
-            ContactState::Slip,
-        ),
-        ("stick", on_cylinder(-0.01, Some(stick), LAW), ContactState::Stick),
-        ("slip", on_cylinder(-0.01, Some(slip), LAW), ContactState::Slip),
-    ];
-    for (name, p, state) in cases {
-        let err = fd_error(&p, state);
-        eprintln!("FD tangent, rigid cylinder, {name}: relative error {err:.2e}");
-        assert!(err < 1e-6, "{name}: {err:e}");
-        let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
-        let e = p.residual_tangent(&mut r, &mut k).unwrap();
-        assert!(r[3..].iter().all(|&v| v == 0.0), "{name}: the master's slots");
-        // ∇_s ξ^α = (a − ζ h)^{-1} ρ_β: the arc length's by 1/(1 + ζ/R)
-        let pt = &e.projection.point;
-        let stretch = 1.0 / (1.0 + e.projection.gap / chart.radius);
-        let (n, [r1, r2]) = (pt.normal, pt.tangents);
-        let want: [f64; 3] =
-            std::array::from_fn(|c| e.normal_force * n[c] + e.traction[0] * stretch * r1[c] + e.traction[1] * r2[c]);
-        let scale = r.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
-        assert!(norm(sub([-r[0], -r[1], -r[2]], want)) <= 1e-12 * scale, "{name}");
-        let t = pt.vector(e.traction);
-        if name == "slip" {
-            let size = norm(t);
-            assert!((size - LAW.mu * e.normal_force).abs() <= 1e-12 * size, "{size}");
+    });
+    let sphere = RigidChart::Sphere(SphereChart::for_slave(centre, 0.8, centre, [0.3, 0.0, 0.1]));
+    for chart in [cylinder, sphere] {
+        let on_chart = |d: f64, history: Option<History>, law: ContactLaw| {
+            let p = PointProblem {
+                rigid: Some(chart),
+                ..PointProblem::new(law, [[0.4, 0.1, 0.2], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]])
+            };
+            let at = p.evaluate_f64().unwrap().projection.point;
+            let slave = std::array::from_fn(|c| at.rho[c] + d * at.normal[c]);
+            let history = history.map(|h| History {
+                xi: [at.xi[0] + h.xi[0], at.xi[1] + h.xi[1]],
+                ..h
+            });
+            PointProblem {
+                history,
+                x: [slave, [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]],
+                ..p
+            }
+        };
+        // histories relative to the slave's closest point
+        let stick = History {
+            xi: [-0.001, 0.001],
+            traction: [0.5, -0.3],
+        };
+        let slip = History {
+            xi: [-0.1, -0.05],
+            traction: [5.0, 3.0],
+        };
+        let frictionless = ContactLaw { mu: 0.0, ..LAW };
+        let cases = [
+            ("open", on_chart(0.01, Some(stick), LAW), ContactState::Open),
+            ("first touch", on_chart(-0.01, None, LAW), ContactState::Stick),
+            (
+                "frictionless",
+                on_chart(-0.01, Some(stick), frictionless),
+                ContactState::Slip,
+            ),
+            ("stick", on_chart(-0.01, Some(stick), LAW), ContactState::Stick),
+            ("slip", on_chart(-0.01, Some(slip), LAW), ContactState::Slip),
+        ];
+        let kind = match chart {
+            RigidChart::Cylinder(_) => "cylinder",
+            RigidChart::Sphere(_) => "sphere",
+        };
+        for (name, p, state) in cases {
+            let err = fd_error(&p, state);
+            eprintln!("FD tangent, rigid {kind}, {name}: relative error {err:.2e}");
+            assert!(err < 1e-6, "{kind}, {name}: {err:e}");
+            let (mut r, mut k) = ([0.0; DOFS], [0.0; DOFS * DOFS]);
+            let e = p.residual_tangent(&mut r, &mut k).unwrap();
+            assert!(r[3..].iter().all(|&v| v == 0.0), "{kind}, {name}: the master's slots");
+            let pt = &e.projection.point;
+            let zeta = e.projection.gap;
+            let share = |al: usize| e.traction[al] / (pt.metric[al][al] - zeta * pt.curvature[al][al]);
+            let (n, [r1, r2]) = (pt.normal, pt.tangents);
+            let want: [f64; 3] = std::array::from_fn(|c| e.normal_force * n[c] + share(0) * r1[c] + share(1) * r2[c]);
+            let scale = r.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+            assert!(
+                norm(sub([-r[0], -r[1], -r[2]], want)) <= 1e-12 * scale,
+                "{kind}, {name}"
+            );
+            if name == "slip" {
+                let size = norm(pt.vector(e.traction));
+                assert!((size - LAW.mu * e.normal_force).abs() <= 1e-12 * size, "{kind}: {size}");
+            }
         }
     }
 }

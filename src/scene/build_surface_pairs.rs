@@ -147,15 +147,6 @@ pub(super) fn add_surface_contacts(
         let (slave_body, slave_side) = slave_side(cx, m, c)?;
         let master = surface_master(cx, m, c, rigid)?;
         let law = contact_law(cx, c)?;
-        if let (SurfaceMaster::Rigid(r), true) = (&master, law.mu > 0.0) {
-            if let RigidSurfaceShape::Sphere { .. } = r.shape {
-                return Err(cx.err(
-                    &c.name,
-                    format!("contact `{}`: `mu` = {} against the rigid sphere `{}`: friction on a rigid sphere needs convective coordinates on it, not built", c.name, c.mu, r.name),
-                    "set mu = 0 (frictionless) against a sphere, or press on a rigid plane, a rigid cylinder or a deformable face",
-                ));
-            }
-        }
         let (slaves, areas, measure) = match &slave_side {
             SlaveSide::Face(face) => {
                 let (slaves, areas) = tributary_areas(&m.nodes, face);
