@@ -11,23 +11,14 @@
 //! increments); single increments 0.282–0.307 as points enter and leave the patch.
 //! Asserted: the mean within 1.5 % of μ on each (release tier).
 
-use contrail::record::Memory;
-use std::sync::atomic::AtomicBool;
+mod common;
 
 const SCENE: &str = "tests/data/ball-drag-3d.toml";
 const MU: f64 = 0.3;
 
 /// The mean F_x/F_z over the sliding phase t ≥ 1.5.
 fn sliding_ratio(sets: &[&str]) -> f64 {
-    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    let (src, problem) = contrail::load_any_scene(SCENE, &sets).unwrap_or_else(|e| panic!("{e}"));
-    let contrail::scene::AnyProblem::Solid(problem) = problem else {
-        panic!("a 3D scene")
-    };
-    let mut mem = Memory::default();
-    let info = contrail::run_info(&src, &sets, &problem);
-    contrail::solver::run(&problem, &info, &mut mem, &AtomicBool::new(false))
-        .unwrap_or_else(|e| panic!("{sets:?}: {e}"));
+    let mem = common::solve_solid(SCENE, sets);
     let force = |i: &contrail::record::IncrementRecord, label: &str| {
         i.monitors.iter().find(|m| m.label == label).expect("monitor").force
     };

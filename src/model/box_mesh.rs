@@ -20,6 +20,19 @@ pub struct BoxMesh {
 }
 
 impl BoxMesh {
+    /// The summed volume of the hexahedra (a test of generated meshes).
+    #[cfg(test)]
+    pub fn volume(&self) -> f64 {
+        use crate::element::hex8::{Hex8Geometry, Hex8Kind};
+        (self.hexes.iter())
+            .map(|h| {
+                Hex8Geometry::new(Hex8Kind::Hex8, &h.map(|i| self.nodes[i]))
+                    .expect("a valid cell")
+                    .volume()
+            })
+            .sum()
+    }
+
     /// `elements = [nx, ny, nz]` (each ≥ 1); `grading` per axis is the last element over
     /// the first (1 = uniform).
     pub fn new(origin: [f64; 3], size: [f64; 3], elements: [usize; 3], grading: [f64; 3]) -> Self {

@@ -172,17 +172,6 @@ fn butterfly(r: &[f64], core: f64) -> (Vec<[f64; 2]>, Vec<[usize; 4]>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::hex8::{Hex8Geometry, Hex8Kind};
-
-    fn volume(m: &BoxMesh) -> f64 {
-        (m.hexes.iter())
-            .map(|h| {
-                Hex8Geometry::new(Hex8Kind::Hex8, &h.map(|i| m.nodes[i]))
-                    .expect("a valid cell")
-                    .volume()
-            })
-            .sum()
-    }
 
     #[test]
     fn a_full_section_becomes_a_butterfly_quarter_cylinder_with_its_sets() {
@@ -192,7 +181,7 @@ mod tests {
         // core k = 3 (r = 0.45): 9 core cells and 2 · 3 · 2 ring cells per layer
         assert_eq!(m.hexes.len(), (9 + 12) * 2);
         let quarter = std::f64::consts::FRAC_PI_4 * 1.0;
-        let v = volume(&m);
+        let v = m.volume();
         assert!(v < quarter && v > 0.97 * quarter, "{v} against {quarter}");
         for &n in &m.node_sets["outer"] {
             assert!((m.nodes[n][0].hypot(m.nodes[n][1]) - 1.0).abs() < 1e-12);
@@ -210,7 +199,7 @@ mod tests {
         let m = quarter_revolution(&[0.5, 0.75, 1.0], &[0.0, 1.0], 4, 0.5);
         assert_eq!(m.hexes.len(), 8);
         let exact = std::f64::consts::FRAC_PI_4 * (1.0 - 0.25);
-        let v = volume(&m);
+        let v = m.volume();
         assert!(v < exact && v > 0.95 * exact, "{v} against {exact}");
         assert_eq!(m.faces["inner"].len(), 4);
         assert_eq!(m.faces["ymin"].len(), 2);
@@ -228,7 +217,7 @@ mod tests {
         assert_eq!((whole.hexes.len(), whole.nodes.len()), (12, 2 * 2 * 12));
         assert!(!whole.faces.contains_key("ymin") && whole.faces["outer"].len() == 12);
         let exact = std::f64::consts::PI * (1.0 - 0.25);
-        let v = volume(&whole);
+        let v = whole.volume();
         assert!(v < exact && v > 0.9 * exact, "{v} against {exact}");
     }
 }

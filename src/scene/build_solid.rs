@@ -160,6 +160,17 @@ fn solid_mesh(src: &SceneSource, b: &super::types::BodySpec) -> Result<Option<Bo
             elements[0],
             elements[1],
         )),
+        MeshSpec::SphereShell {
+            centre,
+            radius,
+            elements,
+            part,
+        } => Some(crate::model::shell_mesh::sphere_shell(
+            *centre,
+            *radius,
+            (elements[0], elements[1]),
+            part.shell_part(),
+        )),
         MeshSpec::Gmsh3d { file } => {
             let g = super::mesh::gmsh_solid(src, b, file)?;
             Some(BoxMesh {

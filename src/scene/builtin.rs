@@ -56,6 +56,10 @@ pub const BUILTINS: &[Builtin] = &[
         text: include_str!("../../scenes/capstan-polygon.toml"),
     },
     Builtin {
+        name: "concentric-spheres",
+        text: include_str!("../../scenes/concentric-spheres.toml"),
+    },
+    Builtin {
         name: "cantilever-3d",
         text: include_str!("../../scenes/cantilever-3d.toml"),
     },

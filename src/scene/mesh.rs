@@ -163,12 +163,13 @@ pub(super) fn body_mesh(src: &SceneSource, b: &BodySpec) -> Result<BodyMesh, Sce
         MeshSpec::Box { .. }
         | MeshSpec::Gmsh3d { .. }
         | MeshSpec::HemisphereShell { .. }
+        | MeshSpec::SphereShell { .. }
         | MeshSpec::Revolved { .. } => {
             return Err(invalid(
                 format!(
-                    "body `{}`: a `box`, `revolved`, `hemisphere-shell` or `gmsh-3d` mesh makes a 3D body",
-                    b.name
-                ),
+                "body `{}`: a `box`, `revolved`, `hemisphere-shell`, `sphere-shell` or `gmsh-3d` mesh makes a 3D body",
+                b.name
+            ),
                 "a scene is 2D or 3D in all its bodies",
             ))
         }

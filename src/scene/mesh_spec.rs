@@ -104,6 +104,23 @@ pub enum MeshSpec {
         /// `layers` hexahedra through the thickness.
         elements: [usize; 2],
     },
+    /// Structured hexahedral mesh of a hollow sphere, `radius[0] ≤ |x − centre| ≤ radius[1]`,
+    /// or of its octant `x, y, z ≥` the centre's (`part`): the body is 3D. The surfaces are an
+    /// equiangular cubed sphere, `n²` cells per cube face and layer for `elements = [n, layers]`
+    /// (`n` even; an octant takes `3 n²/4`). Node sets and faces `outer`, `inner`, for an
+    /// octant the symmetry faces `xmin`, `ymin`, `zmin`, and the set `all`.
+    SphereShell {
+        centre: [f64; 3],
+        /// Inner and outer radius.
+        radius: [f64; 2],
+        /// `[n, layers]`: `n` cells along an edge of the cube (even, ≥ 2), `layers`
+        /// hexahedra through the thickness.
+        elements: [usize; 2],
+        /// `"octant"` (default: the symmetric model, faces on three symmetry planes) or
+        /// `"whole"`.
+        #[serde(default)]
+        part: SpherePart,
+    },
     /// A Gmsh MSH 4.1 file (ASCII or binary) of linear quadrilaterals: its physical groups
     /// are the body's node sets, its physical curves on the boundary its faces.
     Gmsh {
@@ -149,8 +166,30 @@ impl MeshSpec {
             MeshSpec::Box { .. }
                 | MeshSpec::Gmsh3d { .. }
                 | MeshSpec::HemisphereShell { .. }
+                | MeshSpec::SphereShell { .. }
                 | MeshSpec::Revolved { .. }
         )
+    }
+}
+
+/// Which part of a hollow sphere a `sphere-shell` mesh models.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SpherePart {
+    /// `x, y, z ≥` the centre's: an eighth, on three symmetry planes.
+    #[default]
+    Octant,
+    /// The whole sphere.
+    Whole,
+}
+
+impl SpherePart {
+    /// The model's name for the part.
+    pub fn shell_part(self) -> crate::model::shell_mesh::ShellPart {
+        match self {
+            SpherePart::Octant => crate::model::shell_mesh::ShellPart::Octant,
+            SpherePart::Whole => crate::model::shell_mesh::ShellPart::Whole,
+        }
     }
 }
 

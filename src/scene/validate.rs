@@ -389,6 +389,9 @@ fn estimated_dofs(mesh: &MeshSpec) -> f64 {
             let n = *n as f64;
             3.0 * (3.0 * n * n + 2.0 * n + 1.0) * (*l as f64 + 1.0)
         }
+        MeshSpec::SphereShell {
+            elements: [n, l], part, ..
+        } => 3.0 * part.shell_part().surface_counts(*n).1 as f64 * (*l as f64 + 1.0),
         MeshSpec::Revolved {
             elements: [nr, nz],
             around,
@@ -409,6 +412,9 @@ fn element_count(mesh: &MeshSpec) -> f64 {
         }
         MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
         MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
+        MeshSpec::SphereShell {
+            elements: [n, l], part, ..
+        } => part.shell_part().surface_counts(*n).0 as f64 * *l as f64,
         MeshSpec::Revolved {
             elements: [nr, nz],
             around,
@@ -425,7 +431,9 @@ fn elements_text(mesh: &MeshSpec) -> String {
             format!("[{}, {}]", elements[0], elements[1])
         }
         MeshSpec::Box { elements, .. } => format!("[{}, {}, {}]", elements[0], elements[1], elements[2]),
-        MeshSpec::HemisphereShell { elements, .. } | MeshSpec::Revolved { elements, .. } => {
+        MeshSpec::HemisphereShell { elements, .. }
+        | MeshSpec::SphereShell { elements, .. }
+        | MeshSpec::Revolved { elements, .. } => {
             format!("[{}, {}]", elements[0], elements[1])
         }
         MeshSpec::Gmsh { file, .. } | MeshSpec::Gmsh3d { file } => file.clone(),

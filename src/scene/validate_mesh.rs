@@ -38,7 +38,13 @@ pub(super) fn check(c: &Check, mesh: &[P], key: &str, spec: &MeshSpec, ext: &mut
             centre,
             radius,
             elements,
-        } => hemisphere_shell(c, mesh, key, (centre, radius, elements), ext),
+        }
+        | MeshSpec::SphereShell {
+            centre,
+            radius,
+            elements,
+            ..
+        } => sphere_shell(c, mesh, key, (centre, radius, elements), ext),
         MeshSpec::Revolved {
             origin,
             size,
@@ -341,9 +347,9 @@ fn box_mesh(
     Ok(h)
 }
 
-/// A hollow hemisphere: finite centre, `0 < inner < outer`, `n` even ≥ 2 and ≥ 1 layer;
+/// A hollow hemisphere or sphere: finite centre, `0 < inner < outer`, `n` even ≥ 2 and ≥ 1 layer;
 /// its smallest edge is at least the inner radius' share of a cell's angle or a layer.
-fn hemisphere_shell(
+fn sphere_shell(
     c: &Check,
     mesh: &[P],
     key: &str,

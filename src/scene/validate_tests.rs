@@ -242,6 +242,22 @@ fn a_hollow_hemisphere_a_turn_and_a_friction_history_are_checked() {
 }
 
 #[test]
+fn a_sphere_shell_is_checked_for_its_counts_and_part() {
+    let c = "concentric-spheres";
+    assert_eq!(outcome(c, &[]), "ok");
+    // a whole sphere has no symmetry faces: the scene's fixes on them are refused by name
+    let e = outcome(c, &["body.inner.mesh.part=\"whole\""]);
+    assert!(
+        e.contains("no node set `xmin`") && e.contains("all, inner, outer"),
+        "{e}"
+    );
+    refused(c, "body.outer.mesh.elements=[15, 2]", &["n even", "elements"]);
+    refused(c, "body.inner.mesh.radius=[0.8, 0.65]", &["0 < inner < outer"]);
+    let e = outcome(c, &["body.inner.mesh.part=\"half\""]);
+    assert!(e.contains("octant") && e.contains("whole"), "{e}");
+}
+
+#[test]
 fn nagata_patches_are_for_3d_faces_and_the_2d_curves_for_2d() {
     let e = outcome("crossing", &["contact.point.master_smoothing=\"nagata\""]);
     assert!(e.contains("smooths a 3D face") && e.contains("hermite"), "{e}");

@@ -57,6 +57,20 @@ pub fn solve(problem: &Problem) -> (Result<RunSummary, SolveError>, Memory) {
     (r, mem)
 }
 
+/// Load a 3D scene (a built-in name or a path) with `--set` overrides, run it to completion
+/// and keep every record.
+pub fn solve_solid(scene: &str, sets: &[&str]) -> Memory {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    let (src, problem) = contrail::load_any_scene(scene, &sets).unwrap_or_else(|e| panic!("{e}"));
+    let contrail::scene::AnyProblem::Solid(problem) = problem else {
+        panic!("{scene}: a 3D scene")
+    };
+    let mut mem = Memory::default();
+    let info = contrail::run_info(&src, &sets, &problem);
+    run(&problem, &info, &mut mem, &AtomicBool::new(false)).unwrap_or_else(|e| panic!("{scene} {sets:?}: {e}"));
+    mem
+}
+
 /// Run and require completion.
 pub fn solve_ok(problem: &Problem) -> (RunSummary, Memory) {
     let (r, m) = solve(problem);

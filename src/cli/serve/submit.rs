@@ -100,10 +100,13 @@ fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool)
                 let hexahedra = e[0].saturating_mul(e[1]).saturating_mul(e[2]);
                 elements = elements.saturating_add(hexahedra);
             }
-            MeshSpec::Gmsh3d { .. } | MeshSpec::HemisphereShell { .. } | MeshSpec::Revolved { .. } => {
+            MeshSpec::Gmsh3d { .. }
+            | MeshSpec::HemisphereShell { .. }
+            | MeshSpec::SphereShell { .. }
+            | MeshSpec::Revolved { .. } => {
                 return Err(ApiError::bad(
                     format!(
-                        "body `{}` is a 3D `revolved`, `hemisphere-shell` or `gmsh-3d` mesh",
+                        "body `{}` is a 3D `revolved`, `hemisphere-shell`, `sphere-shell` or `gmsh-3d` mesh",
                         b.name
                     ),
                     "the service runs 2D scenes and 3D scenes of `box` meshes only for now: run the others with `contrail run`",
