@@ -159,6 +159,31 @@ pub(super) fn unit_grading3() -> [f64; 3] {
 }
 
 impl MeshSpec {
+    /// The elements a generated mesh will have (an upper estimate for a revolved section; 0
+    /// for a mesh file).
+    pub fn element_count(&self) -> f64 {
+        match self {
+            MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
+                elements[0] as f64 * elements[1] as f64
+            }
+            MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
+            MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
+            MeshSpec::SphereShell {
+                elements: [n, l], part, ..
+            } => part.shell_part().surface_counts(*n).0 as f64 * *l as f64,
+            MeshSpec::Revolved {
+                elements: [nr, nz],
+                around,
+                turn_deg,
+                ..
+            } => {
+                let quarters = (turn_deg / 90.0).round().max(1.0);
+                (*nr as f64) * (*nr.max(around) as f64) * *nz as f64 * quarters
+            }
+            MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
+        }
+    }
+
     /// Whether the mesh makes a 3D body.
     pub fn is_3d(&self) -> bool {
         matches!(

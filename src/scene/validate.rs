@@ -342,7 +342,7 @@ fn limits(c: &Check, s: &SceneFile) -> R {
     // counted in f64: element counts may be anything up to u64::MAX
     let dofs: f64 = s.bodies.iter().map(|b| estimated_dofs(&b.mesh)).sum();
     let worst =
-        (s.bodies.iter().enumerate()).max_by(|a, b| element_count(&a.1.mesh).total_cmp(&element_count(&b.1.mesh)));
+        (s.bodies.iter().enumerate()).max_by(|a, b| a.1.mesh.element_count().total_cmp(&b.1.mesh.element_count()));
     let at = worst.map_or(vec![P::K("limits")], |(i, _)| {
         vec![P::K("body"), P::I(i), P::K("mesh"), P::K("elements")]
     });
@@ -400,26 +400,6 @@ fn estimated_dofs(mesh: &MeshSpec) -> f64 {
             let nr = *nr as f64 + 1.0;
             3.0 * nr * nr.max(*around as f64 + 1.0) * (*nz as f64 + 1.0)
         }
-        MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
-    }
-}
-
-/// The elements a generated mesh will have (0 for a mesh file).
-fn element_count(mesh: &MeshSpec) -> f64 {
-    match mesh {
-        MeshSpec::Rectangle { elements, .. } | MeshSpec::Annulus { elements, .. } => {
-            elements[0] as f64 * elements[1] as f64
-        }
-        MeshSpec::Box { elements, .. } => elements.iter().map(|&n| n as f64).product::<f64>(),
-        MeshSpec::HemisphereShell { elements: [n, l], .. } => 3.0 * (*n as f64).powi(2) * *l as f64,
-        MeshSpec::SphereShell {
-            elements: [n, l], part, ..
-        } => part.shell_part().surface_counts(*n).0 as f64 * *l as f64,
-        MeshSpec::Revolved {
-            elements: [nr, nz],
-            around,
-            ..
-        } => (*nr as f64) * (*nr.max(around) as f64) * *nz as f64,
         MeshSpec::Gmsh { .. } | MeshSpec::Gmsh3d { .. } => 0.0,
     }
 }

@@ -86,42 +86,31 @@ fn check_sets(svc: &Service, sets: &[String]) -> Result<(), ApiError> {
     Ok(())
 }
 
+/// The elements of a scene's generated meshes; a mesh file is refused (the service does not
+/// read files on its machine for a client), except a built-in scene's own 2D mesh.
+fn scene_elements(file: &SceneFile, sets: &[String], builtin: bool) -> Result<usize, ApiError> {
+    let mut elements = 0usize;
+    for b in &file.bodies {
+        match &b.mesh {
+            MeshSpec::Gmsh { .. } if builtin && !sets.iter().any(|s| s.contains("mesh")) => {}
+            MeshSpec::Gmsh { file } | MeshSpec::Gmsh3d { file } => {
+                return Err(ApiError::bad(
+                    format!("body `{}` reads the mesh file `{file}` from the server", b.name),
+                    "scenes sent to the service use generated meshes (rectangle, annulus, box, \
+                     revolved, hemisphere-shell, sphere-shell); run Gmsh scenes with `contrail run`",
+                ))
+            }
+            generated => elements = elements.saturating_add(generated.element_count() as usize),
+        }
+    }
+    Ok(elements)
+}
+
 /// Parse the scene with its overrides (no mesh is built) and check the service's limits.
 fn check_scene(svc: &Service, src: &SceneSource, sets: &[String], builtin: bool) -> Result<SceneFile, ApiError> {
     let file = contrail::scene::parse(src, sets)
         .map_err(|e| ApiError::bad(e.to_string(), "check the scene with `contrail check SCENE --set ...`"))?;
-    let mut elements = 0usize;
-    for b in &file.bodies {
-        match &b.mesh {
-            MeshSpec::Rectangle { elements: e, .. } | MeshSpec::Annulus { elements: e, .. } => {
-                elements = elements.saturating_add(e[0].saturating_mul(e[1]));
-            }
-            MeshSpec::Box { elements: e, .. } => {
-                let hexahedra = e[0].saturating_mul(e[1]).saturating_mul(e[2]);
-                elements = elements.saturating_add(hexahedra);
-            }
-            MeshSpec::Gmsh3d { .. }
-            | MeshSpec::HemisphereShell { .. }
-            | MeshSpec::SphereShell { .. }
-            | MeshSpec::Revolved { .. } => {
-                return Err(ApiError::bad(
-                    format!(
-                        "body `{}` is a 3D `revolved`, `hemisphere-shell`, `sphere-shell` or `gmsh-3d` mesh",
-                        b.name
-                    ),
-                    "the service runs 2D scenes and 3D scenes of `box` meshes only for now: run the others with `contrail run`",
-                ))
-            }
-            MeshSpec::Gmsh { .. } if builtin && !sets.iter().any(|s| s.contains("mesh")) => {}
-            MeshSpec::Gmsh { file } => {
-                return Err(ApiError::bad(
-                    format!("body `{}` reads the mesh file `{file}` from the server", b.name),
-                    "scenes sent to the service use generated meshes (rectangle, annulus); \
-                     run Gmsh scenes with `contrail run`",
-                ))
-            }
-        }
-    }
+    let elements = scene_elements(&file, sets, builtin)?;
     if elements > svc.limits.elements {
         return Err(ApiError::bad(
             format!(
@@ -325,6 +314,26 @@ mod tests {
         assert_eq!(p["contact.transfer"], "continuous");
         assert_eq!(id_name("my scene/1"), "my-scene-1");
         assert_eq!(id_name("///"), "scene");
+    }
+
+    #[test]
+    fn generated_meshes_are_counted_and_mesh_files_refused() {
+        let count = |name: &str, sets: &[&str]| {
+            let b = builtin::find(name).expect("a built-in scene");
+            let src = SceneSource {
+                origin: format!("builtin:{name}"),
+                text: b.text.to_string(),
+            };
+            let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+            let file = contrail::scene::parse(&src, &sets).expect("the scene parses");
+            scene_elements(&file, &sets, true)
+        };
+        // octants of 3 n²/4 cells per layer: 3·64·2 + 3·36·2
+        assert_eq!(count("concentric-spheres", &[]).ok(), Some(600));
+        assert_eq!(count("twisting-hemisphere", &[]).ok(), Some(13 * 13 * 6 + 3 * 64 * 2));
+        assert_eq!(count("half-disc", &[]).ok(), Some(0), "a built-in's own 2D mesh file");
+        let e = count("half-disc", &["body.disc.mesh.file=\"x.msh\""]).expect_err("refused");
+        assert!(e.message.contains("from the server"), "{}", e.message);
     }
 
     #[test]
