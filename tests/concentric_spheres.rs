@@ -10,10 +10,11 @@
 //! increments differ by 12 % and 4 % of a force 1 % of the last):
 //! - mesh (n = 24 and 18, three layers): within 2.0 % (μ = 0.5) and 1.5 % (frictionless);
 //! - step (60 increments): within 1.0 %;
+//! - penalty (ε_N = ε_T = 1e7, ten times stiffer): within 0.06 %;
 //! - the whole plate's force at 0.3 of travel: 25.53 (μ = 0.5), 24.07 (frictionless).
 //!
-//! Asserted (release tier): the histories agree within 3 % (mesh, both frictions) and 1.5 %
-//! (step) pointwise over t ≥ 0.1, and within 1 % of the last force over the whole history;
+//! Asserted (release tier): the histories agree within 3 % (mesh, both frictions), 1.5 %
+//! (step) and 0.5 % (penalty) pointwise over t ≥ 0.1, and within 1 % of the last force over the whole history;
 //! the spheres meet once the plate has travelled the gap (between 0.09 and 0.12); friction
 //! stiffens the response (the plates hold the flattened caps from spreading) at every
 //! increment after the first touch; the outer pole follows the plate (no inversion of the
@@ -65,11 +66,18 @@ fn concentric_spheres_converge_in_mesh_and_step_with_and_without_friction() {
     let coarse = history(&[]);
     let step = history(&["stepping.increments=60"]);
     let fine = history(&FINE);
+    let stiff = history(&[
+        "contact.plate.eps_n=1e7",
+        "contact.plate.eps_t=1e7",
+        "contact.spheres.eps_n=1e7",
+        "contact.spheres.eps_t=1e7",
+    ]);
     let coarse0 = history(&FRICTIONLESS);
     let fine0 = history(&[FINE[0], FINE[1], FRICTIONLESS[0], FRICTIONLESS[1]]);
     for (name, a, b, tol) in [
         ("mesh, μ = 0.5", &coarse, &fine, 0.03),
         ("step, μ = 0.5", &coarse, &step, 0.015),
+        ("penalty ×10, μ = 0.5", &coarse, &stiff, 0.005),
         ("mesh, frictionless", &coarse0, &fine0, 0.03),
     ] {
         let (pointwise, whole) = difference(a, b, 0.1);
@@ -80,7 +88,7 @@ fn concentric_spheres_converge_in_mesh_and_step_with_and_without_friction() {
         );
         assert!(pointwise <= tol && whole <= 0.01, "{name}: {pointwise} {whole}");
     }
-    for run in [&coarse, &step, &fine, &coarse0, &fine0] {
+    for run in [&coarse, &step, &fine, &stiff, &coarse0, &fine0] {
         let meet = run.iter().find(|x| x.3 > 0.0).expect("the spheres meet");
         let travel = 0.3 * meet.0;
         assert!((0.09..=0.12).contains(&travel), "the spheres meet at travel {travel}");

@@ -23,7 +23,7 @@
 //! [`super::variations::variations`]: `∇ζ = n`, `∇ξ^α = (a − ζ h)^{-1,αβ} ρ_β`) and their
 //! dual parts are exact.
 
-use super::projection::{Location, Projection, ProjectionError};
+use super::projection::{Projection, ProjectionError};
 use super::surface::{FacetPoint, GeometryError};
 use super::vec3::{add, cross, dot, lift, norm, re, scale, sub, Scalar, V3};
 use std::f64::consts::PI;
@@ -87,12 +87,7 @@ impl CylinderChart {
             }
             .into());
         }
-        Ok(Projection {
-            point,
-            gap: dist - r,
-            location: Location::Inside,
-            iterations: 0,
-        })
+        Ok(Projection::closed_form(point, dist - r))
     }
 }
 

@@ -81,6 +81,19 @@ pub struct Projection<S: Scalar> {
     pub iterations: usize,
 }
 
+impl<S: Scalar> Projection<S> {
+    /// The projection onto an analytic surface whose closest point is closed-form (a rigid
+    /// sphere's or cylinder's chart): inside its chart, no Newton iteration.
+    pub fn closed_form(point: FacetPoint<S>, gap: S) -> Self {
+        Projection {
+            point,
+            gap,
+            location: Location::Inside,
+            iterations: 0,
+        }
+    }
+}
+
 /// Newton step `Δξ = −J⁻¹ f` at `ξ` for slave `rs`, or `None` where `J` is singular.
 fn newton_step<S: Scalar>(facet: &Facet<S>, rs: V3<S>, xi: [S; 2]) -> Option<[S; 2]> {
     let d = sub(rs, facet.position(xi));

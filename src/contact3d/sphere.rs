@@ -21,7 +21,7 @@
 //! and their dual parts are exact. The chart is fixed in the sphere's frame (it moves by
 //! translation), so a stick anchor keeps its meaning from increment to increment.
 
-use super::projection::{Location, Projection, ProjectionError};
+use super::projection::{Projection, ProjectionError};
 use super::surface::{FacetPoint, GeometryError};
 use super::vec3::{add, dot, lift, norm, scale, sub, Scalar, V3};
 
@@ -35,7 +35,10 @@ pub struct SphereChart {
     pub pole: [f64; 3],
 }
 
-/// A chart point this close to the pole (`1 − q·p`) has no usable coordinates.
+/// A chart point this close to the pole (`1 − q·p`) has no usable coordinates: the
+/// stereographic coordinates grow as `R/(1 − q·p)`, so here they reach 10⁶ R and the metric
+/// 10⁻¹² of its value at the slave's own point (the slave at the antipode of where it started
+/// on the ball: a guard against the chart's singular point, not a contact rule).
 const NEAR_POLE: f64 = 1e-6;
 
 impl SphereChart {
@@ -90,12 +93,7 @@ impl SphereChart {
             normal: q,
             curvature: [[lambda2 * (-1.0 / r), zero], [zero, lambda2 * (-1.0 / r)]],
         };
-        Ok(Projection {
-            point,
-            gap: dist - r,
-            location: Location::Inside,
-            iterations: 0,
-        })
+        Ok(Projection::closed_form(point, dist - r))
     }
 }
 
