@@ -338,6 +338,20 @@ fn summary_rows(o: &mut String, s: &RunSummary) {
 /// The summary's warnings and notes: elements that lost stability, friction history lost at
 /// crossings, states on segment extensions, moving contact fronts, deep penetration.
 fn warning_rows(o: &mut String, s: &RunSummary) {
+    if let Some(i) = &s.instability {
+        row(
+            o,
+            "stability",
+            format!(
+                "the tangent lost positive definiteness at increment {} (t = {}; {}): a limit or bifurcation point (buckling, a snap) lies between t = {} and {}; see `/log`",
+                i.increment,
+                plain(i.t),
+                i.inertia.describe(),
+                plain(i.stable_until),
+                plain(i.t)
+            ),
+        );
+    }
     if let Some(u) = &s.unstable_elements {
         row(
                 o,

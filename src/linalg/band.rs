@@ -396,6 +396,15 @@ impl BandLu {
         Ok(())
     }
 
+    /// The determinant's sign of the last factorisation ([`super::inertia::Inertia::from_lu`]:
+    /// `U`'s diagonal and the row interchanges).
+    pub fn inertia(&self) -> Option<super::inertia::Inertia> {
+        let (ld, kv) = (self.ld(), self.kl + self.ku);
+        let diagonal = (0..self.n).map(move |j| self.ab[j * ld + kv]);
+        let swaps = self.ipiv.iter().enumerate().filter(|&(j, &p)| p != j).count();
+        super::inertia::Inertia::from_lu(diagonal, swaps)
+    }
+
     /// Solve `A x = b` in place with the factors (`dgbtrs`).
     pub fn solve(&self, b: &mut [f64]) {
         #[cfg(target_arch = "x86_64")]

@@ -20,9 +20,10 @@ use super::aggregation::MeshNodes;
 use super::band_plan::BandPlan;
 use super::factorization::{Factorization, LinearError};
 use super::faer_lu::LuPlan;
+use super::inertia::Inertia;
 use super::iterative::{IterativePlan, IterativeStats};
 use super::lagged::{LaggedSolve, LaggedStats};
-use super::ldlt::{LdltPlan, LdltStats};
+use super::ldlt::{values_symmetric, LdltPlan, LdltStats};
 use super::sparse::SparseMatrix;
 pub use crate::settings::LinearSolver;
 use crate::team::Team;
@@ -98,6 +99,9 @@ pub struct LinearSolve {
     parallel_from_flops: f64,
     /// The run's team (the assembler's), handed to the iterative solver.
     team: Option<Arc<Team>>,
+    /// What the latest factorisation said of the tangent's definiteness, until taken
+    /// ([`Self::take_inertia`]).
+    inertia: Option<Inertia>,
 }
 
 impl Default for LinearSolve {
@@ -127,6 +131,7 @@ impl LinearSolve {
             parallel_from: PARALLEL_FROM,
             parallel_from_flops: PARALLEL_FROM_FLOPS,
             team: None,
+            inertia: None,
         }
     }
 
@@ -224,6 +229,14 @@ impl LinearSolve {
         s
     }
 
+    /// What the latest factorisation since the last call said of the tangent's definiteness
+    /// ([`Inertia`]): `None` when no factorisation was made since, or the last one does not
+    /// tell (faer's LU, the Krylov solver, a banded LU of an unsymmetric matrix with a
+    /// negative determinant).
+    pub fn take_inertia(&mut self) -> Option<Inertia> {
+        self.inertia.take()
+    }
+
     /// Counts of the symmetric (`LDLᵀ`) factorisations so far.
     pub fn ldlt_stats(&self) -> LdltStats {
         self.ldlt_stats
@@ -248,8 +261,10 @@ impl LinearSolve {
             }
         } else if let Some(plan) = self.band.as_mut() {
             factorize_and_solve(plan, a, b, par, &mut self.times)?;
+            self.inertia = symmetric_inertia(plan.inertia(), a);
         } else if !self.solve_symmetric(a, b) {
             self.solve_lu(a, b, par)?;
+            self.inertia = None;
         }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(LinearError::NonFinite);
@@ -340,6 +355,7 @@ impl LinearSolve {
         }
         match factorize_and_solve(plan, a, b, par, &mut self.times) {
             Ok(()) => {
+                self.inertia = Some(plan.inertia());
                 if let Some(lagged) = self.lagged.as_mut() {
                     lagged.factorized();
                 }
@@ -368,6 +384,13 @@ impl LinearSolve {
         let lu = self.lu.as_mut().expect("set above");
         factorize_and_solve(lu, a, b, par, &mut self.times)
     }
+}
+
+/// A banded LU's determinant sign, kept when it is positive or the matrix is symmetric (of
+/// an unsymmetric tangent, a frictional one, a negative determinant says nothing of
+/// stability here). The symmetry is checked only for a negative determinant.
+fn symmetric_inertia(inertia: Option<Inertia>, a: &SparseMatrix) -> Option<Inertia> {
+    inertia.filter(|i| i.positive() || values_symmetric(a.n, &a.col_ptr, &a.row_idx, &a.values))
 }
 
 fn add_lagged(sum: &mut LaggedStats, s: &LaggedStats) {

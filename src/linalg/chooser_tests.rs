@@ -183,3 +183,134 @@ fn indefinite_matrix_without_diagonal_pivots_falls_back() {
     let s = chooser.ldlt_stats();
     assert_eq!((s.plans, s.solves, s.fallbacks), (1, 0, 1), "{s:?}");
 }
+
+/// A symmetric matrix on the pattern of `groups` (each group a cell coupling its unknowns):
+/// each cell adds `w (I − 11ᵀ/m)` (positive semi-definite), the diagonal gets `1 − shift(i)`,
+/// so that a few large shifts make it indefinite.
+fn symmetric_cells(n: usize, groups: &[Vec<usize>], shift: impl Fn(usize) -> f64) -> SparseMatrix {
+    let mut a = SparseMatrix::new(n, &mut groups.iter().cloned());
+    for (e, g) in groups.iter().enumerate() {
+        let w = 1.0 + (e % 5) as f64 * 0.3;
+        let m = g.len() as f64;
+        for &r in g {
+            for &c in g {
+                let v = w * (f64::from(u8::from(r == c)) - 1.0 / m);
+                a.add_to(a.index(r, c).unwrap(), v);
+            }
+        }
+    }
+    for i in 0..n {
+        a.add_to(a.index(i, i).unwrap(), 1.0 - shift(i));
+    }
+    a
+}
+
+/// The negative eigenvalues of `a`, from a dense symmetric eigen-decomposition.
+fn dense_negative_eigenvalues(a: &SparseMatrix) -> usize {
+    let mut d = nalgebra::DMatrix::<f64>::zeros(a.n, a.n);
+    for c in 0..a.n {
+        for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+            d[(a.row_idx[k], c)] = a.values[k];
+        }
+    }
+    nalgebra::SymmetricEigen::new(d)
+        .eigenvalues
+        .iter()
+        .filter(|&&l| l < 0.0)
+        .count()
+}
+
+/// The 7-point Laplacian of an `m³` grid of unknowns (Dirichlet outside), shifted by `−σ`,
+/// on the pattern of the grid's hexahedral cells; its eigenvalues are
+/// `Σ_d (2 − 2 cos(π k_d/(m + 1)))`, `k_d = 1..=m`, so its negative ones are counted exactly.
+fn shifted_laplacian(m: usize, sigma: f64) -> (SparseMatrix, usize) {
+    let node = |i: usize, j: usize, k: usize| (k * m + j) * m + i;
+    let cells = m - 1;
+    let mut groups = (0..cells.pow(3)).map(|c| {
+        let (i, j, k) = (c % cells, (c / cells) % cells, c / (cells * cells));
+        (0..8)
+            .map(|v| node(i + (v & 1), j + ((v >> 1) & 1), k + (v >> 2)))
+            .collect::<Vec<_>>()
+    });
+    let n = m.pow(3);
+    let mut a = SparseMatrix::new(n, &mut groups);
+    for k in 0..m {
+        for j in 0..m {
+            for i in 0..m {
+                let p = node(i, j, k);
+                a.add_to(a.index(p, p).unwrap(), 6.0 - sigma);
+                let neighbours = [
+                    (i + 1 < m, node(i + 1, j, k)),
+                    (j + 1 < m, node(i, j + 1, k)),
+                    (k + 1 < m, node(i, j, k + 1)),
+                ];
+                for (_, q) in neighbours.into_iter().filter(|&(inside, _)| inside) {
+                    a.add_to(a.index(p, q).unwrap(), -1.0);
+                    a.add_to(a.index(q, p).unwrap(), -1.0);
+                }
+            }
+        }
+    }
+    let mode = |k: usize| 2.0 - 2.0 * (std::f64::consts::PI * k as f64 / (m + 1) as f64).cos();
+    let negative = (1..=m)
+        .flat_map(|a| (1..=m).flat_map(move |b| (1..=m).map(move |c| (a, b, c))))
+        .filter(|&(a, b, c)| mode(a) + mode(b) + mode(c) < sigma)
+        .count();
+    (a, negative)
+}
+
+/// Sylvester's law of inertia through the chooser: the `LDLᵀ`'s negative pivots are the
+/// matrix's negative eigenvalues (a strip: a simplicial factor; a 3D grid: supernodal);
+/// the banded LU gives their parity.
+#[test]
+fn factorisations_tell_the_negative_eigenvalues() {
+    let strip = quad_grid_groups(30, 3);
+    let n_strip = 2 * 31 * 4;
+    for shifts in [0usize, 1, 2, 5] {
+        let a = symmetric_cells(
+            n_strip,
+            &strip,
+            |i| if i % 37 == 5 && i / 37 < shifts { 9.0 } else { 0.0 },
+        );
+        let expected = dense_negative_eigenvalues(&a);
+        let mut b = vec![1.0; n_strip];
+        let mut ldlt = LinearSolve::new(LinearSolver::General);
+        ldlt.solve(&a, &mut b).unwrap();
+        assert_eq!(
+            ldlt.take_inertia(),
+            Some(Inertia {
+                negative: expected,
+                exact: true
+            }),
+            "shifts {shifts}"
+        );
+        assert_eq!(ldlt.take_inertia(), None, "taken once");
+        assert!(!ldlt.ldlt.as_ref().expect("an LDLᵀ plan").is_supernodal());
+        let mut auto = LinearSolve::new(LinearSolver::Auto);
+        b.fill(1.0);
+        auto.solve(&a, &mut b).unwrap();
+        assert!(auto.banded());
+        assert_eq!(
+            auto.take_inertia(),
+            Some(Inertia {
+                negative: expected % 2,
+                exact: false
+            })
+        );
+    }
+    for sigma in [0.5, 1.3, 2.9] {
+        let (a, expected) = shifted_laplacian(14, sigma);
+        let mut b = vec![1.0; a.n];
+        let mut ldlt = LinearSolve::new(LinearSolver::General);
+        ldlt.solve(&a, &mut b).unwrap();
+        assert!(ldlt.ldlt.as_ref().expect("an LDLᵀ plan").is_supernodal());
+        assert_eq!(
+            ldlt.take_inertia(),
+            Some(Inertia {
+                negative: expected,
+                exact: true
+            }),
+            "σ = {sigma}"
+        );
+    }
+}

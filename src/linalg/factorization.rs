@@ -8,6 +8,7 @@
 
 use super::band_plan::BandPlan;
 use super::faer_lu::LuPlan;
+use super::inertia::Inertia;
 use super::iterative::{IterativeFailure, IterativePlan};
 use super::ldlt::{LdltFailure, LdltPlan};
 use super::sparse::SparseMatrix;
@@ -34,6 +35,13 @@ pub trait Factorization {
     fn factorize(&mut self, a: &SparseMatrix, par: Par) -> Result<(), LinearError>;
     /// Solve `A x = b` in place with the last factorisation; `b` is as it was on failure.
     fn solve(&mut self, a: &SparseMatrix, b: &mut [f64], par: Par) -> Result<(), LinearError>;
+    /// What the last factorisation says of the matrix's definiteness ([`Inertia`]): the
+    /// count of negative eigenvalues (`LDLᵀ`) or the determinant's sign (the banded LU, of
+    /// any matrix: the caller knows whether it was symmetric); `None` where the
+    /// factorisation does not tell (faer's LU, the Krylov solver).
+    fn inertia(&self) -> Option<Inertia> {
+        None
+    }
 }
 
 /// Banded LU with partial pivoting in reverse Cuthill–McKee order (sequential).
@@ -45,6 +53,10 @@ impl Factorization for BandPlan {
     fn solve(&mut self, _: &SparseMatrix, b: &mut [f64], _: Par) -> Result<(), LinearError> {
         BandPlan::solve(self, b);
         Ok(())
+    }
+
+    fn inertia(&self) -> Option<Inertia> {
+        self.lu.inertia()
     }
 }
 
@@ -72,6 +84,10 @@ impl Factorization for LdltPlan {
 
     fn solve(&mut self, a: &SparseMatrix, b: &mut [f64], _: Par) -> Result<(), LinearError> {
         LdltPlan::solve(self, a.symbolic(), &a.values, b, Par::Seq).map_err(LinearError::Symmetric)
+    }
+
+    fn inertia(&self) -> Option<Inertia> {
+        Some(LdltPlan::inertia(self))
     }
 }
 

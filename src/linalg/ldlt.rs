@@ -18,9 +18,11 @@
 
 use super::aggregation::MeshNodes;
 use super::dissection::nested_dissection;
+use super::inertia::Inertia;
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
@@ -156,6 +158,32 @@ impl LdltPlan {
         );
     }
 
+    /// The inertia of the last factorisation: the negative entries of `D`
+    /// ([`Inertia::from_pivots`]; the diagonal of each column of a simplicial factor, of each
+    /// supernode's diagonal block of a supernodal one).
+    pub fn inertia(&self) -> Inertia {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => {
+                let col_ptr = s.col_ptr();
+                let values = &self.l_values;
+                Inertia::from_pivots((0..s.ncols()).map(move |j| values[col_ptr[j]]))
+            }
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let factor = SupernodalLdltRef::new(s, &self.l_values);
+                Inertia::from_pivots((0..s.n_supernodes()).flat_map(move |k| {
+                    let block = factor.supernode(k).val();
+                    (0..block.ncols()).map(move |j| block[(j, j)])
+                }))
+            }
+        }
+    }
+
+    /// Whether the factor is supernodal (faer chooses by the pattern).
+    #[cfg(test)]
+    pub fn is_supernodal(&self) -> bool {
+        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+    }
+
     /// Number of stored values of the factor `L` (and `D`).
     pub fn factor_nnz(&self) -> usize {
         self.l_values.len()
@@ -278,6 +306,12 @@ pub fn factor_flops(s: &SymbolicCholesky<usize>) -> f64 {
             flops
         }
     }
+}
+
+/// Whether the matrix of pattern `(col_ptr, row_idx)` and `values` is symmetric, in pattern
+/// and to [`SYMMETRY_TOLERANCE`] in values (a check made once, not per factorisation).
+pub fn values_symmetric(n: usize, col_ptr: &[usize], row_idx: &[usize], values: &[f64]) -> bool {
+    mirror_map(n, col_ptr, row_idx).is_some_and(|mirror| symmetric(&mirror, values))
 }
 
 /// Whether `values` are symmetric to [`SYMMETRY_TOLERANCE`] over the `mirror` pairs.

@@ -16,6 +16,7 @@ pub mod csr;
 pub mod dissection;
 pub mod factorization;
 pub mod faer_lu;
+pub mod inertia;
 pub mod iterative;
 pub mod lagged;
 pub mod ldlt;

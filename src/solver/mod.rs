@@ -15,6 +15,7 @@ mod newton_types;
 pub mod penetration;
 pub mod run;
 mod search_reach;
+pub mod stability;
 pub mod state;
 mod stepping;
 pub mod tangent_check;

@@ -152,6 +152,8 @@ impl<'a, S: Dim> Iterate<'a, S> {
         ws.merits.clear();
         ws.line_search_failures = 0;
         ws.front_iterations = 0;
+        ws.inertia = None;
+        asm.linear.take_inertia();
         ws.watchdog.reset();
         ws.continuation.reset();
         for p in &model.prescribed {
@@ -245,6 +247,7 @@ impl<'a, S: Dim> Iterate<'a, S> {
             front_iterations: self.ws.front_iterations,
             stabilised: self.ws.continuation.corrections,
             stabilisation_work: self.ws.continuation.work,
+            inertia: self.ws.inertia,
         }
     }
 
@@ -455,7 +458,12 @@ impl<'a, S: Dim> Iterate<'a, S> {
         for (d, ri) in ws.du.iter_mut().zip(&ws.r) {
             *d = -ri;
         }
+        let shifted = ws.continuation.on();
         ws.continuation.solve(self.asm, &mut ws.du)?;
+        // the definiteness of the tangent itself, not of one shifted by the continuation
+        if let Some(inertia) = self.asm.linear.take_inertia().filter(|_| !shifted) {
+            ws.inertia = Some(inertia);
+        }
         Ok(())
     }
 

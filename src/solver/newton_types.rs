@@ -45,6 +45,10 @@ pub struct Converged {
     /// ([`super::continuation`]).
     pub stabilised: usize,
     pub stabilisation_work: f64,
+    /// What the attempt's last factorised tangent (unshifted, symmetric) said of its
+    /// definiteness; `None` when the attempt factorised none that tells
+    /// ([`crate::linalg::inertia`]).
+    pub inertia: Option<crate::linalg::inertia::Inertia>,
 }
 
 /// Buffers and diagnostics of one attempt, reused across increments.
@@ -78,6 +82,8 @@ pub struct Workspace {
     pub(super) last_first_rate: Option<f64>,
     /// Shifted corrections after a failed line search ([`super::continuation`]).
     pub(super) continuation: super::continuation::Continuation,
+    /// The definiteness of the attempt's last factorised tangent ([`Converged::inertia`]).
+    pub(super) inertia: Option<crate::linalg::inertia::Inertia>,
 }
 
 /// Which increment is solved, to what time, and from what start.

@@ -81,6 +81,9 @@ pub struct RunSummary {
     /// [`super::element_check`]): the first such increment, the most at one increment and
     /// the worst element seen.
     pub unstable_elements: Option<UnstableSummary>,
+    /// Where the tangent first lost positive definiteness (a limit or bifurcation point
+    /// passed: [`super::stability`]).
+    pub instability: Option<super::stability::Instability>,
     /// The deepest penetration of the run relative to the local element size, when some
     /// converged increment exceeded [`super::penetration::DEEP_PENETRATION`].
     pub deep_penetration: Option<super::penetration::Penetration>,

@@ -115,6 +115,8 @@ struct Stepping<'a, S: Dim> {
     recording: std::time::Duration,
     /// Unstable elements at the last converged increment.
     unstable_count: usize,
+    /// The tangent's definiteness over the converged increments.
+    tangent: super::stability::TangentWatch,
     /// The smallest element edge at each node (the scale of a penetration).
     node_sizes: Vec<f64>,
 }
@@ -164,6 +166,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
             last_dt: None,
             recording: std::time::Duration::ZERO,
             unstable_count: 0,
+            tangent: Default::default(),
             node_sizes: match S::solid(model) {
                 Some(solid) => super::penetration::solid_node_sizes(solid),
                 None => super::penetration::node_sizes(model.plane()),
@@ -225,7 +228,11 @@ impl<'a, S: Dim> Stepping<'a, S> {
                 attempt += 1;
                 continue;
             }
-            match self.attempt(&mut trial, target, obs, stop)? {
+            let outcome = self.attempt(&mut trial, target, obs, stop)?;
+            if outcome.is_err() {
+                self.tangent.failed_attempt(self.ws.inertia);
+            }
+            match outcome {
                 Ok(conv) => {
                     return Ok(ConvergedIncrement {
                         on_extension: trial.contact.on_extensions(),
@@ -359,6 +366,7 @@ impl<'a, S: Dim> Stepping<'a, S> {
         let hints: Vec<String> = [
             friction_limit(plane, &self.committed.contact, self.t),
             faceted_node(plane, points),
+            self.tangent.failure_hint(),
         ]
         .into_iter()
         .flatten()

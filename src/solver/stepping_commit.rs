@@ -132,6 +132,7 @@ impl<S: Dim> Stepping<'_, S> {
         self.report_lost_histories(&surface_points, obs)?;
         let equilibrium = imbalance.map_or(0.0, |i| i.relative);
         let (conv, cutbacks, on_extension) = (done.conv, done.cutbacks, done.on_extension);
+        let inertia = conv.inertia;
         let rec = self.increment_record((conv, cutbacks, on_extension), t_prev, t_inc, monitors, equilibrium);
         self.summary.monitor = rec.monitor.clone();
         self.summary.monitors = rec.monitors.clone();
@@ -154,9 +155,29 @@ impl<S: Dim> Stepping<'_, S> {
             &mut self.summary,
             obs,
         )?;
+        if let Some(inertia) = inertia {
+            self.watch_tangent(inertia, obs)?;
+        }
         self.asm.update_hourglass_holds(self.model, &self.committed.u);
         self.summary.increments = self.increment;
         Ok(())
+    }
+
+    /// Take the converged increment's tangent definiteness: a warning when it is lost (or
+    /// changes while lost), a note when it returns ([`super::stability`]).
+    fn watch_tangent(
+        &mut self,
+        inertia: crate::linalg::inertia::Inertia,
+        obs: &mut dyn Observer,
+    ) -> Result<(), ObserverError> {
+        use crate::solver::stability::StabilityChange;
+        let change = self.tangent.observe(self.increment, self.t, inertia);
+        self.summary.instability = self.tangent.first;
+        match change {
+            Some(StabilityChange::Lost(m)) => log(obs, LogLevel::Warning, self.increment, self.t, m),
+            Some(StabilityChange::Regained(m)) => log(obs, LogLevel::Info, self.increment, self.t, m),
+            None => Ok(()),
+        }
     }
 
     /// The record of the increment just committed (at `self.t`, from `t_prev`): its Newton
