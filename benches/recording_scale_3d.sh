@@ -9,6 +9,9 @@
 #   bash benches/recording_scale_3d.sh                  # INCREMENTS=200 (hours on 2 cores)
 #   INCREMENTS=1 CASES="none full surface surface+single" bash benches/recording_scale_3d.sh
 #                                                       # what docs/recording.md quotes
+#   MESH=82,82,4 ELEMENT=q4 SOLVER=general CASES="none full every-10+surface" bash benches/recording_scale_3d.sh
+#                                                       # 200 increments of a plate of
+#                                                       # 82 × 82 × 4 plain hexahedra
 #
 # Release build. Run it on a machine with nothing else running: the writer thread takes
 # its CPU from the solver's second thread.
@@ -21,8 +24,12 @@ INCREMENTS="${INCREMENTS:-200}"
 TMP="$(mktemp -d)"
 trap 'rm -rf "$TMP"' EXIT
 
-SCENE=(hertz-3d --set 'body.block.mesh.elements=[56,56,10]' --set 'body.block.mesh.size=[1.0,1.0,0.25]'
-  --set 'body.block.mesh.origin=[0.0,0.0,-0.25]' --set "stepping.increments=$INCREMENTS" --quiet)
+MESH="${MESH:-56,56,10}"
+THICKNESS="${THICKNESS:-0.25}"
+SCENE=(hertz-3d --set "body.block.mesh.elements=[$MESH]" --set "body.block.mesh.size=[1.0,1.0,$THICKNESS]"
+  --set "body.block.mesh.origin=[0.0,0.0,-$THICKNESS]" --set "stepping.increments=$INCREMENTS" --quiet)
+if [ -n "${ELEMENT:-}" ]; then SCENE+=(--set "body.block.element=\"$ELEMENT\""); fi
+if [ -n "${SOLVER:-}" ]; then SCENE+=(--set "solver.linear_solver=\"$SOLVER\""); fi
 cases=(
   "none|"
   "full|--out REC"
