@@ -23,7 +23,7 @@ use super::faer_lu::LuPlan;
 use super::inertia::Inertia;
 use super::iterative::{IterativePlan, IterativeStats};
 use super::lagged::{LaggedSolve, LaggedStats};
-use super::ldlt::{values_symmetric, LdltPlan, LdltStats};
+use super::ldlt::{mirror_map, symmetric, LdltPlan, LdltStats};
 use super::sparse::SparseMatrix;
 pub use crate::settings::LinearSolver;
 use crate::team::Team;
@@ -102,6 +102,9 @@ pub struct LinearSolve {
     /// What the latest factorisation said of the tangent's definiteness, until taken
     /// ([`Self::take_inertia`]).
     inertia: Option<Inertia>,
+    /// The mirror of each upper entry of the banded pattern (`None` inside: not structurally
+    /// symmetric), made at the first negative determinant of the pattern.
+    band_mirror: Option<Option<Vec<(usize, usize)>>>,
 }
 
 impl Default for LinearSolve {
@@ -132,6 +135,7 @@ impl LinearSolve {
             parallel_from_flops: PARALLEL_FROM_FLOPS,
             team: None,
             inertia: None,
+            band_mirror: None,
         }
     }
 
@@ -261,7 +265,8 @@ impl LinearSolve {
             }
         } else if let Some(plan) = self.band.as_mut() {
             factorize_and_solve(plan, a, b, par, &mut self.times)?;
-            self.inertia = symmetric_inertia(plan.inertia(), a);
+            let inertia = plan.inertia();
+            self.inertia = inertia.filter(|i| i.positive() || self.band_symmetric(a));
         } else if !self.solve_symmetric(a, b) {
             self.solve_lu(a, b, par)?;
             self.inertia = None;
@@ -294,6 +299,7 @@ impl LinearSolve {
     fn forget_plans(&mut self) {
         self.generation = None;
         self.band = None;
+        self.band_mirror = None;
         self.lu = None;
         self.ldlt = None;
         self.ldlt_decided = false;
@@ -304,6 +310,16 @@ impl LinearSolve {
             self.iterative_stats = self.iterative_stats();
             self.iterative = None;
         }
+    }
+
+    /// Whether the banded matrix is symmetric: a banded LU's negative determinant tells of
+    /// stability only then (not of a frictional tangent). Checked only for a negative
+    /// determinant, over the pattern's mirror map (made once).
+    fn band_symmetric(&mut self, a: &SparseMatrix) -> bool {
+        let mirror = self
+            .band_mirror
+            .get_or_insert_with(|| mirror_map(a.n, &a.col_ptr, &a.row_idx));
+        mirror.as_ref().is_some_and(|m| symmetric(m, &a.values))
     }
 
     /// Solve with `LDLᵀ` when the setting allows it and the pattern's first values were
@@ -384,13 +400,6 @@ impl LinearSolve {
         let lu = self.lu.as_mut().expect("set above");
         factorize_and_solve(lu, a, b, par, &mut self.times)
     }
-}
-
-/// A banded LU's determinant sign, kept when it is positive or the matrix is symmetric (of
-/// an unsymmetric tangent, a frictional one, a negative determinant says nothing of
-/// stability here). The symmetry is checked only for a negative determinant.
-fn symmetric_inertia(inertia: Option<Inertia>, a: &SparseMatrix) -> Option<Inertia> {
-    inertia.filter(|i| i.positive() || values_symmetric(a.n, &a.col_ptr, &a.row_idx, &a.values))
 }
 
 fn add_lagged(sum: &mut LaggedStats, s: &LaggedStats) {

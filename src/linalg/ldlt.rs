@@ -308,14 +308,8 @@ pub fn factor_flops(s: &SymbolicCholesky<usize>) -> f64 {
     }
 }
 
-/// Whether the matrix of pattern `(col_ptr, row_idx)` and `values` is symmetric, in pattern
-/// and to [`SYMMETRY_TOLERANCE`] in values (a check made once, not per factorisation).
-pub fn values_symmetric(n: usize, col_ptr: &[usize], row_idx: &[usize], values: &[f64]) -> bool {
-    mirror_map(n, col_ptr, row_idx).is_some_and(|mirror| symmetric(&mirror, values))
-}
-
 /// Whether `values` are symmetric to [`SYMMETRY_TOLERANCE`] over the `mirror` pairs.
-fn symmetric(mirror: &[(usize, usize)], values: &[f64]) -> bool {
+pub fn symmetric(mirror: &[(usize, usize)], values: &[f64]) -> bool {
     let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let floor = SYMMETRY_TOLERANCE * scale;
     mirror.iter().all(|&(k, m)| {
@@ -326,7 +320,7 @@ fn symmetric(mirror: &[(usize, usize)], values: &[f64]) -> bool {
 
 /// For each strictly-upper entry `k = (r, c)`, `r < c`, the position of `(c, r)`; `None` when
 /// one is missing (rows sorted within each column).
-fn mirror_map(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Option<Vec<(usize, usize)>> {
+pub fn mirror_map(n: usize, col_ptr: &[usize], row_idx: &[usize]) -> Option<Vec<(usize, usize)>> {
     let mut mirror = Vec::with_capacity(row_idx.len() / 2);
     for c in 0..n {
         for k in col_ptr[c]..col_ptr[c + 1] {
