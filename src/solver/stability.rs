@@ -56,7 +56,6 @@ impl TangentWatch {
     /// Take the definiteness of the converged increment `increment` at `t` (from its
     /// attempt's last factorised tangent); what changed, if anything.
     pub fn observe(&mut self, increment: usize, t: f64, inertia: Inertia) -> Option<StabilityChange> {
-        self.failed_negative = None;
         if inertia.positive() {
             self.stable_until = t;
             return self.reported.take().map(|_| {
@@ -84,6 +83,11 @@ impl TangentWatch {
             source(inertia),
             self.stable_until,
         )))
+    }
+
+    /// An increment converged: the failed attempts before it are forgotten.
+    pub fn converged(&mut self) {
+        self.failed_negative = None;
     }
 
     /// Take the last factorised tangent of a failed attempt (the first negative one since
@@ -174,7 +178,7 @@ mod tests {
         w.failed_attempt(Some(negative(1)));
         w.failed_attempt(Some(STABLE));
         assert!(w.failure_hint().is_some_and(|h| h.contains("failed attempt")));
-        assert_eq!(w.observe(8, 0.8, STABLE), None);
+        w.converged();
         assert_eq!(
             w.failure_hint(),
             None,

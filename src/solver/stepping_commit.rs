@@ -155,6 +155,7 @@ impl<S: Dim> Stepping<'_, S> {
             &mut self.summary,
             obs,
         )?;
+        self.tangent.converged();
         if let Some(inertia) = inertia {
             self.watch_tangent(inertia, obs)?;
         }
