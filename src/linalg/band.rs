@@ -279,6 +279,34 @@ pub struct BandLu {
     pub ku: usize,
     ab: Vec<f64>,
     ipiv: Vec<usize>,
+    /// What the last factorisation's pivots say of the determinant, gathered as it went.
+    pivots: PivotSigns,
+}
+
+/// The pivots of an LU as the factorisation meets them: the parity of the negative pivots
+/// plus row interchanges (the determinant's sign), and the smallest and largest magnitude.
+#[derive(Debug, Clone, Copy, Default)]
+struct PivotSigns {
+    odd: bool,
+    min_abs: f64,
+    max_abs: f64,
+}
+
+impl PivotSigns {
+    fn start() -> Self {
+        PivotSigns {
+            odd: false,
+            min_abs: f64::INFINITY,
+            max_abs: 0.0,
+        }
+    }
+
+    #[inline(always)]
+    fn add(&mut self, pivot: f64, interchanged: bool) {
+        self.odd ^= (pivot < 0.0) ^ interchanged;
+        self.min_abs = self.min_abs.min(pivot.abs());
+        self.max_abs = self.max_abs.max(pivot.abs());
+    }
 }
 
 impl BandLu {
@@ -299,6 +327,7 @@ impl BandLu {
             ku,
             ab: vec![0.0; n * (2 * kl + ku + 1)],
             ipiv: vec![0; n],
+            pivots: PivotSigns::default(),
         }
     }
 
@@ -345,6 +374,7 @@ impl BandLu {
         let (n, kl, ld) = (self.n, self.kl, self.ld());
         let kv = self.kl + self.ku;
         let mut ju = 0;
+        self.pivots = PivotSigns::start();
         for j in 0..n {
             let km = kl.min(n - 1 - j);
             let col = j * ld + kv;
@@ -368,6 +398,7 @@ impl BandLu {
                     self.ab.swap(base + j - c, base + j + p - c);
                 }
             }
+            self.pivots.add(self.ab[col], p != 0);
             let inv = 1.0 / self.ab[col];
             for r in 1..=km {
                 self.ab[col + r] *= inv;
@@ -396,13 +427,11 @@ impl BandLu {
         Ok(())
     }
 
-    /// The determinant's sign of the last factorisation ([`super::inertia::Inertia::from_lu`]:
-    /// `U`'s diagonal and the row interchanges).
+    /// The determinant's sign of the last factorisation
+    /// ([`super::inertia::Inertia::from_lu`]), from the pivots gathered while it ran.
     pub fn inertia(&self) -> Option<super::inertia::Inertia> {
-        let (ld, kv) = (self.ld(), self.kl + self.ku);
-        let diagonal = (0..self.n).map(move |j| self.ab[j * ld + kv]);
-        let swaps = self.ipiv.iter().enumerate().filter(|&(j, &p)| p != j).count();
-        super::inertia::Inertia::from_lu(diagonal, swaps)
+        let p = self.pivots;
+        super::inertia::Inertia::from_lu(p.odd, (p.min_abs, p.max_abs))
     }
 
     /// Solve `A x = b` in place with the factors (`dgbtrs`).

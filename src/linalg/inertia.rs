@@ -41,19 +41,15 @@ impl Inertia {
         }
     }
 
-    /// From the diagonal of `U` and the number of row interchanges of `P K = L U`: the
-    /// determinant's sign as a parity (1: negative). `None` when a pivot lies within
-    /// [`ROUND_OFF`] of zero (the sign is round-off).
-    pub fn from_lu(diagonal: impl Iterator<Item = f64> + Clone, swaps: usize) -> Option<Self> {
-        let floor = ROUND_OFF * diagonal.clone().fold(0.0, |m: f64, d| m.max(d.abs()));
-        let mut negative = swaps % 2;
-        for d in diagonal {
-            if d.abs() <= floor {
-                return None;
-            }
-            negative ^= usize::from(d < 0.0);
-        }
-        Some(Inertia { negative, exact: false })
+    /// From `P K = L U`: `odd`, whether the negative pivots of `U` and the row interchanges
+    /// are odd in number together (the determinant is negative), and the smallest and
+    /// largest pivot magnitude. `None` when a pivot lies within [`ROUND_OFF`] of zero (the
+    /// sign is round-off).
+    pub fn from_lu(odd: bool, (min_abs, max_abs): (f64, f64)) -> Option<Self> {
+        (min_abs > ROUND_OFF * max_abs).then_some(Inertia {
+            negative: usize::from(odd),
+            exact: false,
+        })
     }
 
     /// Whether the tangent is positive definite as far as this tells: no negative eigenvalue
@@ -94,21 +90,9 @@ mod tests {
 
     #[test]
     fn lu_gives_the_determinants_sign() {
-        // one negative pivot and one interchange: det > 0
-        assert_eq!(
-            Inertia::from_lu([2.0, -1.0, 3.0].into_iter(), 1),
-            Some(Inertia {
-                negative: 0,
-                exact: false
-            })
-        );
-        assert_eq!(
-            Inertia::from_lu([2.0, -1.0, 3.0].into_iter(), 2),
-            Some(Inertia {
-                negative: 1,
-                exact: false
-            })
-        );
-        assert_eq!(Inertia::from_lu([2.0, 1e-12, 3.0].into_iter(), 0), None);
+        let det = |odd, range| Inertia::from_lu(odd, range).map(|i| (i.negative, i.exact));
+        assert_eq!(det(false, (1.0, 3.0)), Some((0, false)));
+        assert_eq!(det(true, (1.0, 3.0)), Some((1, false)));
+        assert_eq!(det(true, (1e-12, 3.0)), None, "a pivot at round-off");
     }
 }
