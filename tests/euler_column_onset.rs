@@ -84,6 +84,11 @@ fn onset(elements: [usize; 2], increments: usize, factor: f64, solver: &str) -> 
     let problem = common::scene_text(&column(elements, increments, factor * euler() * L / ea, solver));
     let (summary, mem) = common::solve_ok(&problem);
     let i = summary.instability?;
+    // `/increment` records it: positive definite up to the bracket, the loss at its end
+    for r in mem.increments.iter().filter(|r| r.t <= i.t + 1e-12) {
+        let negative = r.tangent.expect("a symmetric tangent tells").negative_eigenvalues;
+        assert_eq!(negative > 0, r.t > i.stable_until + 1e-12, "increment {}", r.increment);
+    }
     let force_at = |t: f64| {
         mem.increments
             .iter()

@@ -98,8 +98,9 @@ fn scenes_are_drawn_at_the_stride_asked_for_and_at_the_last_increment() {
     // the reference configuration, every 4th increment of 30, and the last
     assert_eq!(scenes(SceneEvery::Every(4)), (1 + 7 + 1, 1));
     assert_eq!(scenes(SceneEvery::Every(1)), (1 + 30, 1));
-    // auto: about 200 per run, so every increment of a 30-increment run
-    assert_eq!(scenes(SceneEvery::Auto), (1 + 30, 1));
+    // auto: about 200 per run (every increment of a 30-increment run), but only at the
+    // increments with positions: every 7th (4 of them) and the last
+    assert_eq!(scenes(SceneEvery::Auto), (1 + 4 + 1, 1));
     assert_eq!(scenes(SceneEvery::Off), (0, 0));
     assert_eq!(SceneEvery::Auto.stride(4800), 24);
 }

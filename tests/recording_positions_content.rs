@@ -138,6 +138,61 @@ fn a_3d_run_keeps_its_surface_bit_for_bit_and_its_contact_in_full() {
     assert!(kept_bytes.len() < full_bytes.len());
 }
 
+/// A 3D run recorded with positions every 3rd increment: the slaves that stay out of reach
+/// of the ball are left out of `/surface_contact` (fewer entries than slaves in its
+/// messages) and read back as the solver made them — at the increments without positions
+/// with no position (NaN), since no node's position is kept there.
+#[test]
+fn a_3d_run_with_positions_every_nth_increment_leaves_out_the_slaves_out_of_reach() {
+    // a search radius of 0.05 (the default, twice the coarse mesh's longest edge, reaches
+    // every slave): the slaves farther than about 0.32 from the axis are out of reach
+    let text = include_str!("../scenes/hertz-3d.toml").replace("eps_n = 1.0e7", "eps_n = 1.0e7\nsearch_radius = 0.05");
+    let (problem, info) = common::solid_problem("hertz-3d.toml", &text);
+    let go = |o: &mut dyn Observer| {
+        contrail::solver::run(&problem, &info, o, &AtomicBool::new(false)).unwrap();
+    };
+    let opts = McapOptions {
+        positions_every: 3,
+        ..McapOptions::default()
+    };
+    let (bytes, mem) = record(opts, go);
+    let slaves = problem.model.surface_contacts[0].slaves.len();
+    let written: Vec<usize> = mcap::MessageStream::new(&bytes)
+        .unwrap()
+        .map(Result::unwrap)
+        .filter(|m| m.channel.topic == "/surface_contact")
+        .map(|m| {
+            let v: serde_json::Value = serde_json::from_slice(&m.data).unwrap();
+            v["slave"].as_array().unwrap().len()
+        })
+        .collect();
+    assert_eq!(written.len(), 4);
+    assert!(written.iter().all(|&n| n < slaves), "{written:?} of {slaves}");
+    let r = Recording::from_bytes(&bytes, "every-3.mcap").unwrap();
+    let with_positions: Vec<usize> = r.positions.iter().map(|p| p.increment).collect();
+    assert_eq!(with_positions, [3, 4]);
+    let json = |p: &contrail::record::surface_contact::SurfacePointRecord| serde_json::to_string(p).unwrap();
+    let mut unkept = 0;
+    for (inc, solver) in r.increments.iter().zip(&mem.surface) {
+        let read = r.surface_at(inc.increment);
+        assert_eq!(read.len(), solver.len());
+        for (a, b) in read.iter().zip(solver) {
+            if !with_positions.contains(&inc.increment) && b.is_bare_out_of_reach() {
+                assert!(a.position.iter().all(|x| x.is_nan()), "{a:?}");
+                unkept += 1;
+                let kept = contrail::record::surface_contact::SurfacePointRecord {
+                    position: b.position,
+                    ..a.clone()
+                };
+                assert_eq!(json(&kept), json(b));
+            } else {
+                assert_eq!(json(a), json(b));
+            }
+        }
+    }
+    assert!(unkept > 0);
+}
+
 fn contrail(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_contrail"))
         .args(args)

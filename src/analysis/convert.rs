@@ -4,17 +4,19 @@
 //! go through the sink's own per-increment writer ([`Format3Writer`]). Every message is
 //! logged at the time of its increment's `/increment` message in the old file. The Foxglove
 //! scene is drawn at the increments that have `/positions` (the old file has no other node
-//! coordinates).
+//! coordinates), in 3D with the 3D pairs' points and rigid masters.
 
 use super::recording::Recording;
 use crate::record::mcap::format3::Format3Writer;
 use crate::record::mcap::foxglove::{ScenePoint, SceneView};
+use crate::record::mcap::foxglove3d::SolidSceneView;
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
 use crate::record::mcap::sink::SceneEvery;
-use crate::record::messages::CrossingMessageRef;
+use crate::record::messages::{CrossingMessageRef, PositionsMessage};
 use crate::record::packed_positions::{PositionsContent, Precision};
 use crate::record::pressure::PressureRecord;
+use crate::record::IncrementRecord;
 use std::collections::BTreeMap;
 use std::io::{Seek, Write};
 
@@ -78,7 +80,7 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
         Clock::Fixed(r.start_time),
     )?;
     let (stride, from_version) = write_header(r, &mut out, opts)?;
-    let mut format = Format3Writer::new(&r.model, r.scene(), true);
+    let mut format = Format3Writer::new(&r.model, r.scene(), true).lossless();
     // the positions as the recording kept them (every node or the boundary; the precision)
     let single = r.metadata.get("positions_precision").map(String::as_str) == Some("single");
     let kept = PositionsContent {
@@ -89,15 +91,15 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
     let mut scenes = 0;
     if stride > 0 {
         format.reference(&mut out)?;
-        let offsets = vec![[0.0; 2]; r.model.rigid.len()];
-        let view = SceneView {
+        let start = PositionsMessage {
             increment: 0,
             t: 0.0,
-            nodes: &r.model.nodes,
-            rigid_offsets: &offsets,
-            contact: &[],
+            nodes: r.model.nodes.clone(),
+            nodes_3d: r.model.nodes_3d.clone(),
+            rigid_offsets: vec![[0.0; 2]; r.model.rigid.len()],
         };
-        format.scene(&mut out, &view)?;
+        let first = IncrementRecord::default();
+        scene_at(&mut format, &mut out, r, &first, &start)?;
         scenes += 1;
     }
     let positions: BTreeMap<usize, _> = r.positions.iter().map(|p| (p.increment, p)).collect();
@@ -119,6 +121,11 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
         let contact = r.contact_at(inc.increment);
         let at = positions.get(&inc.increment).copied();
         format.contact(&mut out, inc.increment, inc.t, contact, at.is_some())?;
+        if !r.model.surface_contacts.is_empty() {
+            let offsets = r.surface_offsets.get(&inc.increment).map_or(&[][..], Vec::as_slice);
+            let surface = r.surface_at(inc.increment);
+            format.surface_contact(&mut out, (inc.increment, inc.t), offsets, surface, at.is_some())?;
+        }
         for c in r.crossings.iter().filter(|c| c.increment == inc.increment) {
             let msg = CrossingMessageRef {
                 increment: c.increment,
@@ -138,15 +145,7 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
             .collect();
         format.interfaces(&mut out, &joined)?;
         if stride > 0 && (inc.increment.is_multiple_of(stride) || Some(inc.increment) == last) {
-            let points: Vec<ScenePoint> = contact.iter().map(ScenePoint::of).collect();
-            let view = SceneView {
-                increment: inc.increment,
-                t: inc.t,
-                nodes: &p.nodes,
-                rigid_offsets: &p.rigid_offsets,
-                contact: &points,
-            };
-            format.scene(&mut out, &view)?;
+            scene_at(&mut format, &mut out, r, inc, p)?;
             scenes += 1;
         }
     }
@@ -165,4 +164,41 @@ pub fn convert<W: Write + Seek>(r: &Recording, out: W, opts: &ConvertOptions) ->
         scenes,
     };
     out.finish().map(|w| (w, report)).map_err(|(_, e)| e)
+}
+
+/// The Foxglove scene of increment `inc` (the reference configuration: a default record) at
+/// the positions `p`: the 3D mesh with the 3D pairs' points and rigid masters, or the plane
+/// mesh with its contact points and rigid bodies.
+fn scene_at<W: Write + Seek>(
+    format: &mut Format3Writer,
+    out: &mut McapOut<W>,
+    r: &Recording,
+    inc: &IncrementRecord,
+    p: &PositionsMessage,
+) -> Result<(), OutError> {
+    if !r.model.nodes_3d.is_empty() {
+        let contact: Vec<ScenePoint<[f64; 3]>> = (r.surface_at(inc.increment).iter())
+            .map(ScenePoint::of_surface)
+            .collect();
+        // the reference configuration: the rigid masters where they start
+        let start = vec![[0.0; 3]; r.model.surface_contacts.len()];
+        let offsets = r.surface_offsets.get(&inc.increment).unwrap_or(&start);
+        let view = SolidSceneView {
+            increment: inc.increment,
+            t: inc.t,
+            nodes: &p.nodes_3d,
+            master_offsets: offsets,
+            contact: &contact,
+        };
+        return format.solid_scene(out, &view);
+    }
+    let points: Vec<ScenePoint> = r.contact_at(inc.increment).iter().map(ScenePoint::of).collect();
+    let view = SceneView {
+        increment: inc.increment,
+        t: inc.t,
+        nodes: &p.nodes,
+        rigid_offsets: &p.rigid_offsets,
+        contact: &points,
+    };
+    format.scene(out, &view)
 }

@@ -41,8 +41,10 @@ pub(super) fn compare(
     fields: &mut [FieldDiff],
     at: &dyn Fn(Option<String>) -> Divergence,
 ) {
+    let by_slave: std::collections::HashMap<(usize, usize), &SurfacePointRecord> =
+        pb.iter().map(|q| ((q.pair, q.slave), q)).collect();
     for a in pa {
-        let Some(b) = pb.iter().find(|q| q.pair == a.pair && q.slave == a.slave) else {
+        let Some(b) = by_slave.get(&(a.pair, a.slave)) else {
             continue;
         };
         let label = || Some(format!("{}/{} (node {})", a.pair_name, a.slave, a.node));

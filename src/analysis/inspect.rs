@@ -70,6 +70,9 @@ pub struct InspectReport {
     /// What `/positions` keeps beyond every node in double precision (empty: that).
     pub positions_kept: String,
     pub chunks: usize,
+    /// The tangent's definiteness over the converged increments (`/increment` `tangent`;
+    /// empty where no increment recorded it).
+    pub stability: String,
 }
 
 /// Summarise a recording.
@@ -127,7 +130,41 @@ pub fn inspect(r: &Recording) -> InspectReport {
         positions_every: meta("positions_every"),
         positions_kept: positions_kept(r),
         chunks: r.chunks,
+        stability: stability(&r.increments),
     }
+}
+
+/// The tangent's definiteness along the path: positive definite at every increment that
+/// recorded it, or the first increment with a negative eigenvalue (count, or an odd number
+/// from a determinant's sign) after the last one seen positive definite.
+fn stability(increments: &[crate::record::IncrementRecord]) -> String {
+    let judged: Vec<(&crate::record::IncrementRecord, crate::record::TangentRecord)> =
+        (increments.iter()).filter_map(|i| i.tangent.map(|t| (i, t))).collect();
+    if judged.is_empty() {
+        return String::new();
+    }
+    let Some(k) = judged.iter().position(|(_, t)| t.negative_eigenvalues > 0) else {
+        return format!(
+            "tangent positive definite at every increment that tells ({} of {})",
+            judged.len(),
+            increments.len()
+        );
+    };
+    let (first, t) = judged[k];
+    let how = if t.exact {
+        count(t.negative_eigenvalues, "negative eigenvalue", "negative eigenvalues")
+    } else {
+        "an odd number of negative eigenvalues (negative determinant)".to_string()
+    };
+    let after = match k.checked_sub(1).map(|j| judged[j].0) {
+        Some(p) => format!(
+            ", positive definite at increment {} (t = {}): a limit or bifurcation point lies between",
+            p.increment,
+            plain(p.t)
+        ),
+        None => ": the path starts past a limit or bifurcation point".to_string(),
+    };
+    format!("{how} at increment {} (t = {}){after}", first.increment, plain(first.t))
 }
 
 /// One line per 2D contact pair: its slaves, master and transfer scheme.
@@ -357,6 +394,9 @@ fn render_rows(s: &InspectReport, o: &mut String) {
         row("last log", l.clone());
     }
     row("crossings", s.crossings.to_string());
+    if !s.stability.is_empty() {
+        row("stability", s.stability.clone());
+    }
 }
 
 /// The table of the points that crossed segments: how often, in which increments.
@@ -410,4 +450,38 @@ fn render_channels(s: &InspectReport, o: &mut String) {
         n => format!("every {n} increments"),
     };
     let _ = writeln!(o, "  (positions {every}{})", s.positions_kept);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stability;
+    use crate::record::{IncrementRecord, TangentRecord};
+
+    fn increment(increment: usize, negative: Option<usize>) -> IncrementRecord {
+        IncrementRecord {
+            increment,
+            t: 0.25 * increment as f64,
+            tangent: negative.map(|n| TangentRecord {
+                negative_eigenvalues: n,
+                exact: true,
+            }),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn the_stability_row_names_the_interval_of_the_loss() {
+        assert_eq!(stability(&[increment(1, None)]), "");
+        let stable = [increment(1, Some(0)), increment(2, None), increment(3, Some(0))];
+        assert_eq!(
+            stability(&stable),
+            "tangent positive definite at every increment that tells (2 of 3)"
+        );
+        let lost = [increment(1, Some(0)), increment(2, Some(0)), increment(3, Some(1))];
+        assert_eq!(
+            stability(&lost),
+            "1 negative eigenvalue at increment 3 (t = 0.75), positive definite at increment 2 \
+             (t = 0.5): a limit or bifurcation point lies between"
+        );
+    }
 }

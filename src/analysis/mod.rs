@@ -14,4 +14,5 @@ pub mod metrics;
 pub mod plot;
 pub mod recording;
 pub mod recover;
+pub mod restore;
 pub mod validate_records;

@@ -137,7 +137,7 @@ impl Recording {
                 topic,
                 what,
             })?;
-        restore_out_of_reach(&mut b.contact, &b.positions);
+        super::restore::restore_out_of_reach(&mut b.contact, &b.positions, &b.increments);
         check_records(&model, &b).map_err(|(topic, what)| RecordingError::Invalid {
             path: name.to_string(),
             topic,
@@ -263,50 +263,6 @@ fn check_header(
         });
     }
     Ok(metadata)
-}
-
-/// Put back the `/contact` records a version-2 or -3 recording leaves out (see
-/// [`crate::record::mcap::sink::OutOfReach`]): in each increment with a `/positions`
-/// message, a node slave whose last record was out of reach and that has none is out of
-/// reach still; its record is the last one with the node's current position and no
-/// previous segment. The points of each increment are kept in pair and slave order.
-fn restore_out_of_reach(contact: &mut BTreeMap<usize, Vec<ContactPointRecord>>, positions: &[PositionsMessage]) {
-    let mut last: BTreeMap<(usize, usize), ContactPointRecord> = BTreeMap::new();
-    let mut at = positions.iter().peekable();
-    let increments: std::collections::BTreeSet<usize> = contact
-        .keys()
-        .copied()
-        .chain(positions.iter().map(|p| p.increment))
-        .collect();
-    for inc in increments {
-        while at.next_if(|p| p.increment < inc).is_some() {}
-        let here = at.next_if(|p| p.increment == inc);
-        let points = contact.entry(inc).or_default();
-        let mut present = std::collections::BTreeSet::new();
-        for p in points.iter() {
-            last.insert((p.pair, p.slave), p.clone());
-            present.insert((p.pair, p.slave));
-        }
-        let Some(pos) = here else { continue };
-        let mut added = false;
-        for (key, l) in last.iter_mut() {
-            let Some(node) = crate::record::mcap::sink::node_of_label(&l.slave_label) else {
-                continue;
-            };
-            if l.segment.is_some() || node >= pos.nodes.len() || present.contains(key) {
-                continue;
-            }
-            l.previous_segment = None;
-            l.crossing = false;
-            l.position = pos.nodes[node];
-            points.push(l.clone());
-            added = true;
-        }
-        if added {
-            points.sort_by_key(|p| (p.pair, p.slave));
-        }
-    }
-    contact.retain(|_, v| !v.is_empty());
 }
 
 /// Largest record (a decompressed chunk included) a corrupt length field may announce before
@@ -469,19 +425,22 @@ impl Builder {
             let points = a.records(model).map_err(|e| (schemas::CONTACT.to_string(), e))?;
             self.contact.entry(a.increment).or_default().extend(points);
         }
+        for p in std::mem::take(&mut self.packed_positions) {
+            self.positions
+                .push(p.unpack_for(model).map_err(|e| (schemas::POSITIONS.to_string(), e))?);
+        }
+        let positions: BTreeMap<usize, &PositionsMessage> = self.positions.iter().map(|p| (p.increment, p)).collect();
         for a in std::mem::take(&mut self.surface_arrays) {
-            let points = a
+            let mut points = a
                 .records(model)
                 .map_err(|e| (schemas::SURFACE_CONTACT.to_string(), e))?;
+            let at = positions.get(&a.increment).copied();
+            super::restore::restore_surface_out_of_reach(&mut points, (a.pair, &a.pair_name), model, at);
             self.surface.entry(a.increment).or_default().extend(points);
             self.surface_offsets
                 .entry(a.increment)
                 .or_default()
                 .push(a.master_offset);
-        }
-        for p in std::mem::take(&mut self.packed_positions) {
-            self.positions
-                .push(p.unpack_for(model).map_err(|e| (schemas::POSITIONS.to_string(), e))?);
         }
         for a in std::mem::take(&mut self.pressure_arrays) {
             self.pressure

@@ -98,7 +98,8 @@ fn progress_sink(path: &Path) -> anyhow::Result<ProgressSink> {
 #[derive(clap::Args, Debug, Clone)]
 pub struct SceneArgs {
     /// In an `.mcap` recording, draw the model for Foxglove (`/foxglove/scene`) every N-th
-    /// increment, `auto` (about 200 scenes per run) or `off`; the reference configuration
+    /// increment, `auto` (about 200 scenes per run, at increments with positions) or `off`;
+    /// the reference configuration
     /// and the last increment always get one unless `off`.
     #[arg(long, value_name = "N|auto|off", default_value = "auto", value_parser = parse_scene_every)]
     pub scene_every: SceneEvery,

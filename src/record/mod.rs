@@ -153,6 +153,32 @@ pub struct IncrementRecord {
     /// older recordings.
     #[serde(with = "Real", default = "nan")]
     pub equilibrium: f64,
+    /// The definiteness of the converged attempt's last factorised tangent that the
+    /// continuation did not shift (absent where none told: an unsymmetric tangent with a
+    /// negative determinant, faer's LU, the Krylov solver; and in older recordings).
+    /// Negative eigenvalues at a converged state: the path has passed a limit or
+    /// bifurcation point (`crate::solver::stability`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<TangentRecord>,
+}
+
+/// What the factorisation of a symmetric tangent says about its eigenvalues
+/// ([`crate::linalg::inertia`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub struct TangentRecord {
+    /// Negative eigenvalues: the count (`exact`, from an `LDLᵀ`'s pivots) or its parity, 0
+    /// or 1 (`exact` false: the sign of a banded LU's determinant).
+    pub negative_eigenvalues: usize,
+    pub exact: bool,
+}
+
+impl TangentRecord {
+    pub fn of(i: crate::linalg::inertia::Inertia) -> Self {
+        TangentRecord {
+            negative_eigenvalues: i.negative,
+            exact: i.exact,
+        }
+    }
 }
 
 fn nan() -> f64 {

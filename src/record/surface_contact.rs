@@ -119,6 +119,77 @@ impl SurfacePointRecord {
     }
 }
 
+impl SurfacePointRecord {
+    /// The record of slave `slave` (node `node`) of pair `pair` when it has stayed out of
+    /// reach since the last converged increment: open, no facet now or before, nothing
+    /// carried, no force, NaN where a field needs a projection; `position` is the node's.
+    /// Recordings leave such records out and readers put them back with this.
+    pub fn out_of_reach((pair, pair_name): (usize, &str), (slave, node): (usize, usize), position: [f64; 3]) -> Self {
+        SurfacePointRecord {
+            pair,
+            pair_name: pair_name.to_string(),
+            slave,
+            node,
+            facet: None,
+            previous_facet: None,
+            xi: [f64::NAN; 2],
+            gap: f64::NAN,
+            normal_force: 0.0,
+            trial_traction: [0.0; 2],
+            traction: [0.0; 2],
+            state: ContactState::Open,
+            crossing: false,
+            history_lost: false,
+            carried: None,
+            position,
+            contact_point: [f64::NAN; 3],
+            normal: [f64::NAN; 3],
+            force: [0.0; 3],
+        }
+    }
+
+    /// Whether this record is, bit for bit, [`SurfacePointRecord::out_of_reach`] at its
+    /// position (so that a reader puts back exactly what was left out).
+    pub fn is_bare_out_of_reach(&self) -> bool {
+        let bare = Self::out_of_reach((self.pair, ""), (self.slave, self.node), self.position);
+        let reals = |r: &Self| -> [u64; 17] {
+            let [x1, x2] = r.xi;
+            let [a1, a2] = r.trial_traction;
+            let [b1, b2] = r.traction;
+            let [c1, c2, c3] = r.contact_point;
+            let [n1, n2, n3] = r.normal;
+            let [f1, f2, f3] = r.force;
+            let v = [
+                r.gap,
+                r.normal_force,
+                x1,
+                x2,
+                a1,
+                a2,
+                b1,
+                b2,
+                c1,
+                c2,
+                c3,
+                n1,
+                n2,
+                n3,
+                f1,
+                f2,
+                f3,
+            ];
+            v.map(f64::to_bits)
+        };
+        self.facet.is_none()
+            && self.previous_facet.is_none()
+            && self.state == ContactState::Open
+            && !self.crossing
+            && !self.history_lost
+            && self.carried.is_none()
+            && reals(self) == reals(&bare)
+    }
+}
+
 /// A 3D contact pair in `/model`: its slave nodes with their tributary areas, its master
 /// (a body's facets or a rigid surface) and its law.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]

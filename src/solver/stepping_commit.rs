@@ -212,6 +212,7 @@ impl<S: Dim> Stepping<'_, S> {
             on_extension,
             front_iterations: conv.front_iterations,
             equilibrium,
+            tangent: conv.inertia.map(crate::record::TangentRecord::of),
         }
     }
 

@@ -1,6 +1,7 @@
 //! What one converged increment becomes in a format-3 recording, apart from `/increment` and
-//! `/crossing` (written as they are): one `/contact` message of arrays per pair, with slave
-//! nodes that stay out of reach left out ([`crate::record::mcap::sink::OutOfReach`]); `/pressure` and
+//! `/crossing` (written as they are): one `/contact` message of arrays per pair and one
+//! `/surface_contact` message per 3D pair, with slave nodes that stay out of reach left out
+//! ([`crate::record::mcap::sink::OutOfReach`]); `/pressure` and
 //! `/positions` at the increments that have positions; the Foxglove scene at the increments
 //! that have one; and `/log` twice (contrail's and `foxglove.Log`). Shared by the MCAP sink
 //! and `contrail convert`, so that a converted recording is the one the sink would write.
@@ -11,9 +12,11 @@ use crate::record::mcap::foxglove::{self, SceneEncoder, SceneView};
 use crate::record::mcap::foxglove3d::{SolidSceneEncoder, SolidSceneView};
 use crate::record::mcap::out::{McapOut, OutError};
 use crate::record::mcap::schemas;
+use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{ModelRecord, PackedPositions, PositionsMessage};
 use crate::record::packed_positions::PositionsContent;
 use crate::record::pressure::PressureRecord;
+use crate::record::surface_contact::SurfacePointRecord;
 use crate::record::{ContactPointRecord, LogRecord};
 use std::io::{Seek, Write};
 
@@ -30,7 +33,15 @@ pub struct Format3Writer {
     out_of_reach: Vec<Vec<bool>>,
     /// Per pair: whether each slave is a node (only nodes are thinned).
     is_node: Vec<Vec<bool>>,
+    /// Per pair: whether each slave is a node whose position `/positions` holds bit for bit.
+    exact: Vec<Vec<bool>>,
     pair_names: Vec<String>,
+    /// Per 3D pair: its name and whether `/positions` holds each slave's position bit for bit.
+    surface_pairs: Vec<(String, Vec<bool>)>,
+    /// Keep every position a record has: at an increment without `/positions`, leave out
+    /// only a point whose position is NaN already (`contrail convert`); otherwise the
+    /// positions of such increments are not kept (the sink: the user's choice).
+    lossless: bool,
     /// Indices of the points of one pair written in one message (reused).
     take: Vec<usize>,
     scene: SceneEncoder,
@@ -43,13 +54,19 @@ pub struct Format3Writer {
 
 impl Format3Writer {
     pub fn new(model: &ModelRecord, scene_name: &str, thin_out_of_reach: bool) -> Self {
+        let is_node: Vec<Vec<bool>> = (model.contacts.iter())
+            .map(|c| c.slaves.iter().map(|s| node_of_label(s).is_some()).collect())
+            .collect();
         Format3Writer {
             thin_out_of_reach,
             out_of_reach: model.contacts.iter().map(|c| vec![false; c.slaves.len()]).collect(),
-            is_node: (model.contacts.iter())
-                .map(|c| c.slaves.iter().map(|s| node_of_label(s).is_some()).collect())
-                .collect(),
+            exact: is_node.clone(),
+            is_node,
             pair_names: model.contacts.iter().map(|c| c.name.clone()).collect(),
+            surface_pairs: (model.surface_contacts.iter())
+                .map(|c| (c.name.clone(), vec![true; c.slave_nodes.len()]))
+                .collect(),
+            lossless: false,
             take: Vec::new(),
             scene: SceneEncoder::new(model),
             solid_scene: (model.dim == Some(3)).then(|| SolidSceneEncoder::new(model)),
@@ -58,20 +75,35 @@ impl Format3Writer {
         }
     }
 
-    /// Keep `content` of the positions. A slave node whose positions are not written bit for
-    /// bit is never left out of `/contact` (readers restore a left-out entry from them).
+    /// Write every position the records have (see `lossless`): a converted recording keeps
+    /// what its source kept.
+    pub fn lossless(mut self) -> Self {
+        self.lossless = true;
+        self
+    }
+
+    /// Keep `content` of the positions. At an increment with `/positions`, a slave node whose
+    /// position is not written there bit for bit is not left out of the contact channels
+    /// (readers restore a left-out entry with the position `/positions` holds).
     pub fn keep_positions(&mut self, model: &ModelRecord, content: PositionsContent) {
-        for (flags, c) in self.is_node.iter_mut().zip(&model.contacts) {
+        for (flags, c) in self.exact.iter_mut().zip(&model.contacts) {
             for (flag, s) in flags.iter_mut().zip(&c.slaves) {
                 *flag = node_of_label(s).is_some_and(|n| content.exact_for(n));
+            }
+        }
+        for ((_, flags), c) in self.surface_pairs.iter_mut().zip(&model.surface_contacts) {
+            for (flag, &n) in flags.iter_mut().zip(&c.slave_nodes) {
+                *flag = content.exact_for(n);
             }
         }
         self.positions = content;
     }
 
     /// The `/contact` messages of increment `increment` (one per pair, its points in the
-    /// order given, which is slave order): `positions_now` says whether the increment has `/positions` (only then
-    /// can a point out of reach be left out and restored by readers).
+    /// order given, which is slave order): `positions_now` says whether the increment has
+    /// `/positions`. A node slave that stays out of reach is left out where that increment
+    /// holds its position bit for bit, and at every increment without `/positions` (its
+    /// record is its position, which the user chose not to keep there).
     pub fn contact<W: Write + Seek>(
         &mut self,
         out: &mut McapOut<W>,
@@ -90,7 +122,10 @@ impl Format3Writer {
                     *f = out_now;
                 }
                 let node = self.is_node[pair].get(p.slave).copied().unwrap_or(false);
-                if self.thin_out_of_reach && positions_now && out_now && was_out && node {
+                let exact = self.exact[pair].get(p.slave).copied().unwrap_or(false);
+                // what a reader puts back: the position bit for bit, or none where none is kept
+                let unkept = position_unkept(positions_now, self.lossless, &p.position);
+                if self.thin_out_of_reach && out_now && was_out && node && ((positions_now && exact) || unkept) {
                     continue;
                 }
                 self.take.push(k);
@@ -104,6 +139,33 @@ impl Format3Writer {
                 take: &self.take,
             };
             out.put(schemas::CONTACT, &msg)?;
+        }
+        Ok(())
+    }
+
+    /// The `/surface_contact` messages of an increment of a 3D model: one per 3D pair, with
+    /// the displacement `offsets[pair]` of its rigid master, its points among `points` in
+    /// their order (slave order). A point out of reach since the last converged increment
+    /// ([`SurfacePointRecord::is_bare_out_of_reach`]) is left out under the rule of
+    /// [`Format3Writer::contact`]; readers put back [`SurfacePointRecord::out_of_reach`].
+    pub fn surface_contact<W: Write + Seek>(
+        &mut self,
+        out: &mut McapOut<W>,
+        (increment, t): (usize, f64),
+        offsets: &[[f64; 3]],
+        points: &[SurfacePointRecord],
+        positions_now: bool,
+    ) -> Result<(), OutError> {
+        let lossless = self.lossless;
+        for (pair, (name, exact)) in self.surface_pairs.iter().enumerate() {
+            let kept = points.iter().filter(|p| p.pair == pair).filter(|p| {
+                let exact = exact.get(p.slave).copied().unwrap_or(false);
+                let unkept = position_unkept(positions_now, lossless, &p.position);
+                !(self.thin_out_of_reach && p.is_bare_out_of_reach() && ((positions_now && exact) || unkept))
+            });
+            let offset = offsets.get(pair).copied().unwrap_or([0.0; 3]);
+            let msg = SurfaceContactArrays::of((increment, t), (pair, name), offset, kept);
+            out.put(schemas::SURFACE_CONTACT, &msg)?;
         }
         Ok(())
     }
@@ -180,4 +242,14 @@ impl Format3Writer {
             Ok(())
         })
     }
+}
+
+/// Whether a reader puts back no position for a left-out point: its increment has no
+/// `/positions` and either they are not kept there (the sink) or, converting, the record had
+/// none either.
+fn position_unkept(positions_now: bool, lossless: bool, position: &[f64]) -> bool {
+    if positions_now {
+        return false;
+    }
+    !lossless || position.iter().any(|x| !x.is_finite())
 }

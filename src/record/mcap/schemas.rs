@@ -126,7 +126,7 @@ pub const CHANNELS: &[ChannelSpec] = &[
         topic: CONTACT,
         schema_name: CONTACT_ARRAYS,
         file: "contact.schema.json",
-        description: "one per converged increment and contact pair, every field an array over its slave points (slave nodes that stay out of reach left out where /positions has them; readers restore them): slave, segment, previous segment, xi, anchor, gap, forces, state, crossing, positions, normals, tangents",
+        description: "one per converged increment and contact pair, every field an array over its slave points (slave nodes that stay out of reach left out where /positions holds them bit for bit and at increments without /positions; readers restore them): slave, segment, previous segment, xi, anchor, gap, forces, state, crossing, positions, normals, tangents",
         schema: Source::Generated(|| schemars::schema_for!(ContactArrays)),
     },
     ChannelSpec {
@@ -175,7 +175,7 @@ pub const CHANNELS: &[ChannelSpec] = &[
         topic: SURFACE_CONTACT,
         schema_name: SURFACE_CONTACT_ARRAYS,
         file: "surface-contact.schema.json",
-        description: "3D (node-to-surface) contact: one per converged increment and pair, every field an array over its slave nodes: slave, node, facet, previous facet, convective coordinates (xi1, xi2), gap, normal force, trial and returned covariant tractions, state, crossing, history lost, the history carried across a facet edge, positions, contact points, normals, forces; the rigid master's offset",
+        description: "3D (node-to-surface) contact: one per converged increment and pair, every field an array over its slave nodes (those that stay out of reach left out as on /contact; readers restore them): slave, node, facet, previous facet, convective coordinates (xi1, xi2), gap, normal force, trial and returned covariant tractions, state, crossing, history lost, the history carried across a facet edge, positions, contact points, normals, forces; the rigid master's offset",
         schema: Source::Generated(|| schemars::schema_for!(SurfaceContactArrays)),
     },
     ChannelSpec {

@@ -19,7 +19,6 @@ use crate::record::mcap::foxglove3d::SolidSceneView;
 pub use crate::record::mcap::out::ChunkCompression;
 use crate::record::mcap::out::{Clock, Compression, McapOut, OutError};
 use crate::record::mcap::schemas;
-use crate::record::mcap::surface_arrays::SurfaceContactArrays;
 use crate::record::messages::{CrossingMessageRef, ModelRecord, PositionsMessage};
 use crate::record::packed_positions::{PositionsContent, PositionsOf, Precision};
 use crate::record::pressure::{profiles, PressureLayout, PressureRecord};
@@ -71,7 +70,9 @@ pub enum Iterations {
 /// and the last increment, which always do).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SceneEvery {
-    /// About [`SCENES_PER_RUN`] per run: every `increments / SCENES_PER_RUN`-th of the
+    /// About [`SCENES_PER_RUN`] per run, at increments with `/positions` (the MCAP sink
+    /// rounds the stride up to a multiple of `positions_every`): every
+    /// `increments / SCENES_PER_RUN`-th of the
     /// scene's nominal increments (default).
     #[default]
     Auto,
@@ -95,14 +96,18 @@ impl SceneEvery {
     }
 }
 
-/// How `/contact` treats a slave node with no master segment within reach (format versions
-/// 2 and 3). Such a point is open and carries nothing but its position: every other field is
-/// null, NaN or zero, and the same from one increment to the next. Its entry is written at
-/// the first increment it is out of reach (and whenever it comes back within reach), and left
-/// out while it stays out of reach in increments whose `/positions` message is written;
-/// readers ([`crate::analysis::recording::Recording`]) restore those records from the last
-/// one written and the node's position in `/positions`, bit for bit (tested by
-/// `tests/recording_roundtrip.rs`).
+/// How `/contact` and `/surface_contact` treat a slave node with no master within reach
+/// (format versions 2 and 3). Such a point is open and carries nothing but its position:
+/// every other field is null, NaN or zero, and the same from one increment to the next. Its
+/// entry is written at the first increment it is out of reach (and whenever it comes back
+/// within reach), and left out while it stays out of reach: at the increments whose
+/// `/positions` hold its position bit for bit, and at the increments without `/positions`
+/// (`--positions-every N`: its position is not kept there, as no node's is). Readers
+/// ([`crate::analysis::recording::Recording`]) restore those records from the last one
+/// written (3D: [`crate::record::surface_contact::SurfacePointRecord::out_of_reach`]) with
+/// the node's position in that increment's `/positions`, NaN where it has none: bit for bit
+/// where the positions are kept (tested by `tests/recording_roundtrip.rs` and
+/// `tests/recording_positions_content.rs`).
 pub struct OutOfReach;
 
 impl Default for McapOptions {
@@ -333,6 +338,11 @@ pub fn scene_attachment(info: &RunInfo, time_ns: u64) -> mcap::Attachment<'_> {
 impl<W: Write + Seek> Observer for McapSink<W> {
     fn start(&mut self, model: crate::model::ModelRef<'_>, info: &RunInfo) -> Result<(), ObserverError> {
         self.scene_stride = self.opts.scene.stride(info.settings.stepping.increments);
+        if self.opts.scene == SceneEvery::Auto {
+            // a scene draws the positions: at increments that keep them
+            let every = self.opts.positions_every.max(1);
+            self.scene_stride = self.scene_stride.div_ceil(every) * every;
+        }
         let mut record = ModelRecord::of(model, info.settings.stepping.end);
         let content = PositionsContent::of(&record, self.opts.positions_of, self.opts.positions_precision);
         record.positions_nodes = content.nodes.clone().unwrap_or_default();
@@ -447,7 +457,11 @@ impl<W: Write + Seek> McapSink<W> {
             self.out.put(schemas::CROSSING, &msg)?;
         }
         if let crate::model::ModelRef::Solid(solid) = view.model {
-            write_surface_contact(&mut self.out, solid, rec, view.surface)?;
+            let offsets: Vec<[f64; 3]> = (solid.surface_contacts.iter())
+                .map(|pair| master_offset(pair, rec.t))
+                .collect();
+            let at = (rec.increment, rec.t);
+            format.surface_contact(&mut self.out, at, &offsets, view.surface, positions_now)?;
         }
         let positions = PositionsMessage::of(rec.increment, rec.t, view.model, view.u);
         let plane = view.model.plane();
@@ -492,19 +506,4 @@ impl<W: Write + Seek> McapSink<W> {
         });
         Ok(())
     }
-}
-
-/// The `/surface_contact` messages of an increment of a 3D model: one per pair.
-fn write_surface_contact<W: Write + Seek>(
-    out: &mut McapOut<W>,
-    model: &crate::model::Model<crate::model::Solid>,
-    rec: &IncrementRecord,
-    points: &[SurfacePointRecord],
-) -> Result<(), OutError> {
-    for (ip, pair) in model.surface_contacts.iter().enumerate() {
-        let offset = master_offset(pair, rec.t);
-        let msg = SurfaceContactArrays::of((rec.increment, rec.t), (ip, &pair.name), offset, points);
-        out.put(schemas::SURFACE_CONTACT, &msg)?;
-    }
-    Ok(())
 }

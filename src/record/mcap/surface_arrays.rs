@@ -1,7 +1,7 @@
 //! The 3D contact points of one pair at one converged increment as one message of arrays
 //! (channel `/surface_contact`, format 3): the node-to-surface counterpart of
-//! [`super::arrays::ContactArrays`]. Every slave node is written at every increment (no
-//! thinning of points out of reach).
+//! [`super::arrays::ContactArrays`]. A slave node that stays out of reach is left out where
+//! readers can put it back ([`crate::record::mcap::format3::Format3Writer::surface_contact`]).
 
 use crate::contact::law::ContactState;
 use crate::record::messages::ModelRecord;
@@ -11,7 +11,9 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The slave nodes of one 3D contact pair at the end of a converged increment: every array
-/// has one entry per slave, in slave order (`/model` `surface_contacts[pair].slave_nodes`).
+/// has one entry per slave written, in slave order (`/model`
+/// `surface_contacts[pair].slave_nodes`); a slave left out is open and out of reach, its
+/// record [`SurfacePointRecord::out_of_reach`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SurfaceContactArrays {
     pub increment: usize,
@@ -76,15 +78,14 @@ pub struct SurfaceContactArrays {
 }
 
 impl SurfaceContactArrays {
-    /// The points of pair `pair` (named `pair_name`) among `points` (in their order) as one
-    /// message.
-    pub fn of(
+    /// `points` (of pair `pair`, named `pair_name`, in slave order) as one message.
+    pub fn of<'a>(
         (increment, t): (usize, f64),
         (pair, pair_name): (usize, &str),
         master_offset: [f64; 3],
-        points: &[SurfacePointRecord],
+        points: impl IntoIterator<Item = &'a SurfacePointRecord>,
     ) -> Self {
-        let p: Vec<&SurfacePointRecord> = points.iter().filter(|p| p.pair == pair).collect();
+        let p: Vec<&SurfacePointRecord> = points.into_iter().collect();
         let col = |f: &dyn Fn(&SurfacePointRecord) -> [f64; 3]| p.iter().map(|q| f(q)).collect();
         SurfaceContactArrays {
             increment,
