@@ -9,9 +9,13 @@
 #   bash benches/recording_scale_3d.sh                  # INCREMENTS=200 (hours on 2 cores)
 #   INCREMENTS=1 CASES="none full surface surface+single" bash benches/recording_scale_3d.sh
 #                                                       # what docs/recording.md quotes
-#   MESH=82,82,4 ELEMENT=q4 SOLVER=general CASES="none full every-10+surface" bash benches/recording_scale_3d.sh
+#   KEEP=rec MESH=82,82,4 ELEMENT=q4 SOLVER=general CASES="full every-10+surface" bash benches/recording_scale_3d.sh
 #                                                       # 200 increments of a plate of
-#                                                       # 82 × 82 × 4 plain hexahedra
+#                                                       # 82 × 82 × 4 plain hexahedra,
+#                                                       # the recordings kept in rec/
+#   python3 benches/recording_channels.py rec/full.mcap rec/every-10+surface.mcap
+#                                                       # their bytes per channel
+#   EXTRA="--set contact.0.search_radius=0.0716" ...    # more settings for every case
 #
 # Release build. Run it on a machine with nothing else running: the writer thread takes
 # its CPU from the solver's second thread.
@@ -30,6 +34,8 @@ SCENE=(hertz-3d --set "body.block.mesh.elements=[$MESH]" --set "body.block.mesh.
   --set "body.block.mesh.origin=[0.0,0.0,-$THICKNESS]" --set "stepping.increments=$INCREMENTS" --quiet)
 if [ -n "${ELEMENT:-}" ]; then SCENE+=(--set "body.block.element=\"$ELEMENT\""); fi
 if [ -n "${SOLVER:-}" ]; then SCENE+=(--set "solver.linear_solver=\"$SOLVER\""); fi
+# shellcheck disable=SC2206
+if [ -n "${EXTRA:-}" ]; then SCENE+=($EXTRA); fi
 cases=(
   "none|"
   "full|--out REC"
@@ -59,6 +65,7 @@ for c in "${cases[@]}"; do
   [ -z "$base" ] && base=$wall
   bytes=0
   [ -f "$rec" ] && bytes=$(stat -c %s "$rec")
+  if [ -n "${KEEP:-}" ] && [ -f "$rec" ]; then mkdir -p "$KEEP" && cp "$rec" "$KEEP/"; fi
   [ "$name" = full ] && full=$bytes
   ratio_bytes="-"
   [ -n "$full" ] && [ "$bytes" -gt 0 ] && ratio_bytes=$(echo "scale=3; $bytes / $full" | bc)

@@ -93,28 +93,7 @@ fn a_recording_reads_back_to_what_the_solver_reported() {
         assert_eq!(a.t, b.t);
         assert_eq!(a.residuals, b.residuals);
     }
-    // every point as the solver made it, but that a slave out of reach at an increment
-    // without /positions has no position there (its record is its position, not kept)
-    let mut unkept = 0;
-    for (inc, points) in r.increments.iter().zip(&mem.contact) {
-        let got = r.contact_at(inc.increment);
-        assert_eq!(got.len(), points.len());
-        let has_positions = r.positions.iter().any(|p| p.increment == inc.increment);
-        for (a, b) in got.iter().zip(points) {
-            if !has_positions && b.segment.is_none() && a.position[0].is_nan() {
-                unkept += 1;
-                let kept = ContactPointRecord {
-                    position: b.position,
-                    ..a.clone()
-                };
-                assert!(same_point(&kept, b), "increment {}: {a:?} != {b:?}", inc.increment);
-                assert!(a.position[1].is_nan());
-                continue;
-            }
-            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
-        }
-    }
-    assert!(unkept > 0, "the crossing scene has slaves out of reach");
+    assert_restored(&r, &mem.contact);
     assert_eq!(r.crossings.len(), mem.crossings.len());
     for (a, (inc, b)) in r.crossings.iter().zip(&mem.crossings) {
         assert_eq!(a.increment, *inc);
@@ -358,6 +337,63 @@ fn written_points(bytes: &[u8]) -> usize {
             v["slave"].as_array().unwrap().len()
         })
         .sum()
+}
+
+/// Every point of `r` as the solver made it (`solver`, per increment), but that a slave out
+/// of reach at an increment without `/positions` has no position there (its record is its
+/// position, which is not kept there); returns how many such points there are.
+fn assert_restored(r: &Recording, solver: &[Vec<ContactPointRecord>]) -> usize {
+    let mut unkept = 0;
+    assert_eq!(r.increments.len(), solver.len());
+    for (inc, points) in r.increments.iter().zip(solver) {
+        let got = r.contact_at(inc.increment);
+        assert_eq!(got.len(), points.len(), "increment {}", inc.increment);
+        let has_positions = r.positions.iter().any(|p| p.increment == inc.increment);
+        for (a, b) in got.iter().zip(points) {
+            if !has_positions && b.segment.is_none() && a.position.iter().all(|x| x.is_nan()) {
+                unkept += 1;
+                let kept = ContactPointRecord {
+                    position: b.position,
+                    ..a.clone()
+                };
+                assert!(same_point(&kept, b), "increment {}: {a:?} != {b:?}", inc.increment);
+                continue;
+            }
+            assert!(same_point(a, b), "increment {}: {a:?} != {b:?}", inc.increment);
+        }
+    }
+    unkept
+}
+
+/// With `--positions-every 7` the strip's slaves that stay out of reach are left out at the
+/// increments without `/positions` too: read back, they are there, as the solver made them
+/// but for their position (NaN), and the file is smaller than with positions at every
+/// increment thinned alike.
+#[test]
+fn points_out_of_reach_are_left_out_where_no_positions_are_kept() {
+    let (model, info) = load("strip-channel", &["stepping.increments=4800", "stepping.end=0.05"]);
+    let stop = AtomicBool::new(false);
+    let every_7 = McapOptions {
+        positions_every: 7,
+        ..McapOptions::default()
+    };
+    let (bytes, mem, ok) = record(&model, &info, every_7, None, &stop);
+    assert!(ok);
+    let r = Recording::from_bytes(&bytes, "every-7.mcap").unwrap();
+    let unkept = assert_restored(&r, &mem.contact);
+    let out_of_reach: usize = (mem.contact.iter().flatten()).filter(|p| p.segment.is_none()).count();
+    println!("{unkept} of {out_of_reach} records out of reach read back without a position");
+    assert!(
+        unkept * 2 > out_of_reach,
+        "most of them lie between the increments with positions"
+    );
+    let all_points = McapOptions {
+        positions_every: 7,
+        thin_out_of_reach: false,
+        ..McapOptions::default()
+    };
+    let (bytes_all, _, _) = record(&model, &info, all_points, None, &stop);
+    assert!(bytes.len() < bytes_all.len());
 }
 
 /// Format versions 2 and 3 leave out the `/contact` entries of slave nodes that stay out of
