@@ -123,9 +123,7 @@ impl Format3Writer {
                 }
                 let node = self.is_node[pair].get(p.slave).copied().unwrap_or(false);
                 let exact = self.exact[pair].get(p.slave).copied().unwrap_or(false);
-                // what a reader puts back: the position bit for bit, or none where none is kept
-                let unkept = position_unkept(positions_now, self.lossless, &p.position);
-                if self.thin_out_of_reach && out_now && was_out && node && ((positions_now && exact) || unkept) {
+                if out_now && was_out && node && self.restorable(exact, positions_now, &p.position) {
                     continue;
                 }
                 self.take.push(k);
@@ -156,18 +154,25 @@ impl Format3Writer {
         points: &[SurfacePointRecord],
         positions_now: bool,
     ) -> Result<(), OutError> {
-        let lossless = self.lossless;
         for (pair, (name, exact)) in self.surface_pairs.iter().enumerate() {
             let kept = points.iter().filter(|p| p.pair == pair).filter(|p| {
                 let exact = exact.get(p.slave).copied().unwrap_or(false);
-                let unkept = position_unkept(positions_now, lossless, &p.position);
-                !(self.thin_out_of_reach && p.is_bare_out_of_reach() && ((positions_now && exact) || unkept))
+                !(p.is_bare_out_of_reach() && self.restorable(exact, positions_now, &p.position))
             });
             let offset = offsets.get(pair).copied().unwrap_or([0.0; 3]);
             let msg = SurfaceContactArrays::of((increment, t), (pair, name), offset, kept);
             out.put(schemas::SURFACE_CONTACT, &msg)?;
         }
         Ok(())
+    }
+
+    /// Whether a point out of reach since the last increment may be left out: thinning is on
+    /// and a reader puts back what the point had — its position bit for bit (`exact` at an
+    /// increment with `/positions`), or no position where none is kept (an increment without
+    /// `/positions`; converting, only a record that had none either).
+    fn restorable(&self, exact: bool, positions_now: bool, position: &[f64]) -> bool {
+        let unkept = !positions_now && (!self.lossless || position.iter().any(|x| !x.is_finite()));
+        self.thin_out_of_reach && ((positions_now && exact) || unkept)
     }
 
     /// The `/pressure` and `/positions` messages of an increment.
@@ -242,14 +247,4 @@ impl Format3Writer {
             Ok(())
         })
     }
-}
-
-/// Whether a reader puts back no position for a left-out point: its increment has no
-/// `/positions` and either they are not kept there (the sink) or, converting, the record had
-/// none either.
-fn position_unkept(positions_now: bool, lossless: bool, position: &[f64]) -> bool {
-    if positions_now {
-        return false;
-    }
-    !lossless || position.iter().any(|x| !x.is_finite())
 }
